@@ -1,0 +1,1 @@
+//! Rasterise and write plain 2-D geometry.

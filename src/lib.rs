@@ -2,8 +2,46 @@
 //!
 //! Tween closed curves that may cross themselves, so that every in-between
 //! is again the boundary of an immersed disk.
+//!
+//! A closed polygon with turning number +1 is *self-overlapping* when it is
+//! the boundary of an immersed disk: a disk mapped into the plane so that it
+//! may overlap itself but is never folded or turned inside out. immerse
+//! reads such curves, decides self-overlap exactly, triangulates the disk
+//! and morphs it triangle by triangle.
+//!
+//! ## Pipeline
+//!
+//! ```text
+//! curve file ──> curve (parse, clean, orient) ──> immersion (DP triangulation)
+//!   ──> quality ──> tree ──> correspond ──> morph ──> frames
+//! ```
+//!
+//! Every stage uses [`geom`] for positions and exact predicates.
+//!
+//! ## Features
+//!
+//! - `cli` (default): the `immerse` command-line tool and its rendering,
+//!   progress and argument-parsing dependencies. Without it the library has
+//!   no rendering or CLI dependency.
+//!
+//! ## Example
+//!
+//! ```
+//! use immerse::curve::Curve;
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! // A square given clockwise is reversed to counter-clockwise on reading.
+//! let curve = Curve::from_json_str("[[0,0],[0,1],[1,1],[1,0]]", "square.json")?;
+//! assert!(curve.reversed);
+//! assert_eq!(curve.points.len(), 4);
+//! # Ok(())
+//! # }
+//! ```
 #![deny(rustdoc::broken_intra_doc_links)]
 
+pub mod curve;
+pub mod error;
 pub mod geom;
 
+pub use curve::Curve;
+pub use error::{Error, Result};
 pub use geom::Point;

@@ -1,1 +1,7 @@
+//! Integration tests: one binary made of modules (see Cargo.toml,
+//! `autotests = false`).
+#![allow(unreachable_pub, reason = "items of a test binary are reachable only inside it")]
 
+mod cli;
+mod curves;
+mod util;

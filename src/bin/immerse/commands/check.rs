@@ -1,0 +1,64 @@
+//! `immerse check`: the facts of one curve.
+
+use crate::Outcome;
+use crate::args::CheckArgs;
+use crate::output;
+use immerse::Curve;
+use immerse::geom::polygon;
+use serde::Serialize;
+
+/// The JSON report of `immerse check --json`.
+#[derive(Debug, Serialize)]
+struct CheckReport {
+    /// Number of points after cleaning.
+    points: usize,
+    /// Turning number of the cleaned curve as given (before any reversal);
+    /// null when the curve doubles back on itself (a cusp).
+    turning_number: Option<i64>,
+    /// True when no two edges touch except neighbours at their vertex.
+    simple: bool,
+    /// True when the curve was clockwise and has been reversed.
+    reversed: bool,
+}
+
+pub(crate) fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
+    let curve = Curve::from_path(&args.curve)?;
+    let crossing = polygon::first_self_intersection(&curve.points);
+    let report = CheckReport {
+        points: curve.len(),
+        turning_number: curve.turning_number_as_given(),
+        simple: crossing.is_none(),
+        reversed: curve.reversed,
+    };
+    if args.json {
+        output::print_json(&report)?;
+        return Ok(Outcome::Success);
+    }
+    let mut lines = vec![format!("{}: {}", args.curve.display(), curve.name)];
+    let dropped = if curve.dropped > 0 {
+        format!(" ({} repeated point(s) dropped)", curve.dropped)
+    } else {
+        String::new()
+    };
+    lines.push(format!("  points:         {}{dropped}", report.points));
+    lines.push(match curve.turning_as_given {
+        polygon::Turning::Number(k) => format!("  turning number: {k}"),
+        polygon::Turning::Cusp(i) => {
+            format!("  turning number: undefined (the curve doubles back at point {i})")
+        }
+    });
+    lines.push(format!(
+        "  orientation:    {}",
+        if curve.reversed {
+            "clockwise as given; reversed to counter-clockwise"
+        } else {
+            "as given"
+        }
+    ));
+    lines.push(match crossing {
+        None => "  simple:         yes".to_string(),
+        Some((i, j)) => format!("  simple:         no (edges {i} and {j} touch)"),
+    });
+    output::print(&lines.join("\n"))?;
+    Ok(Outcome::Success)
+}

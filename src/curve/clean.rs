@@ -1,0 +1,159 @@
+//! Cleaning and orientation: range checks, duplicate removal, degeneracy
+//! checks and reversal of clockwise curves.
+
+use super::{Curve, CurveError};
+use crate::geom::polygon::{Turning, turning_number};
+use crate::geom::{Orientation, Point, orient};
+
+/// Largest coordinate magnitude accepted. Products of four coordinates in
+/// the in-circle predicate stay far below `f64::MAX` (≈ 1.8e308), as in
+/// spade's `MAX_ALLOWED_VALUE` (its bound is 2^201 for the same reason);
+/// 1e30 is a round bound with room to spare that no drawing approaches.
+pub const MAX_COORDINATE: f64 = 1e30;
+
+/// Smallest non-zero coordinate magnitude accepted. Below it the error
+/// terms of the adaptive predicates could underflow (spade rejects values
+/// below 2^-142 for the same reason); 1e-30 leaves room to spare.
+pub const MIN_COORDINATE: f64 = 1e-30;
+
+/// Most points accepted in one curve (after reading, before cleaning).
+pub const MAX_POINTS: usize = 200_000;
+
+pub(crate) fn build(
+    name: String,
+    raw: Vec<(Point, usize)>,
+    label: &str,
+) -> Result<Curve, CurveError> {
+    if raw.len() > MAX_POINTS {
+        return Err(CurveError::TooLarge {
+            path: label.to_string(),
+            what: format!("{} points", raw.len()),
+            limit: format!("{MAX_POINTS} points"),
+        });
+    }
+    for (index, &(p, place)) in raw.iter().enumerate() {
+        let place = format!("entry {place}");
+        if !p.is_finite() {
+            return Err(CurveError::NonFinite {
+                path: label.to_string(),
+                index,
+                place,
+            });
+        }
+        for v in [p.x, p.y] {
+            let a = v.abs();
+            if a > MAX_COORDINATE || (a != 0.0 && a < MIN_COORDINATE) {
+                return Err(CurveError::OutOfRange {
+                    path: label.to_string(),
+                    index,
+                    place,
+                    value: v,
+                    min: MIN_COORDINATE,
+                    max: MAX_COORDINATE,
+                });
+            }
+        }
+    }
+    let total = raw.len();
+    let mut points: Vec<Point> = Vec::with_capacity(total);
+    for (p, _) in raw {
+        if points.last() != Some(&p) {
+            points.push(p);
+        }
+    }
+    while points.len() > 1 && points.first() == points.last() {
+        points.pop();
+    }
+    let dropped = total - points.len();
+    let mut distinct = points.clone();
+    distinct.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    distinct.dedup();
+    if distinct.len() < 3 {
+        return Err(CurveError::TooFewPoints {
+            path: label.to_string(),
+            distinct: distinct.len(),
+        });
+    }
+    let (a, b) = (distinct[0], distinct[1]);
+    if points
+        .iter()
+        .all(|&p| orient(a, b, p) == Orientation::Collinear)
+    {
+        return Err(CurveError::ZeroArea {
+            path: label.to_string(),
+            count: points.len(),
+        });
+    }
+    let turning_as_given = turning_number(&points);
+    let reversed = turning_as_given == Turning::Number(-1);
+    if reversed {
+        points[1..].reverse();
+    }
+    Ok(Curve {
+        name,
+        points,
+        reversed,
+        turning_as_given,
+        dropped,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn raw(xy: &[(f64, f64)]) -> Vec<(Point, usize)> {
+        xy.iter()
+            .enumerate()
+            .map(|(i, &(x, y))| (Point::new(x, y), i + 1))
+            .collect()
+    }
+
+    #[test]
+    fn drops_closing_and_consecutive_duplicates() {
+        let c = build(
+            "sq".into(),
+            raw(&[(0., 0.), (1., 0.), (1., 0.), (1., 1.), (0., 1.), (0., 0.)]),
+            "sq",
+        )
+        .unwrap();
+        assert_eq!(c.points.len(), 4);
+        assert_eq!(c.dropped, 2);
+        assert!(!c.reversed);
+    }
+
+    #[test]
+    fn reverses_clockwise_keeping_the_first_point() {
+        let c = build(
+            "cw".into(),
+            raw(&[(0., 0.), (0., 1.), (1., 1.), (1., 0.)]),
+            "cw",
+        )
+        .unwrap();
+        assert!(c.reversed);
+        assert_eq!(c.turning_as_given, Turning::Number(-1));
+        assert_eq!(c.points[0], Point::new(0., 0.));
+        assert_eq!(c.points[1], Point::new(1., 0.));
+        assert_eq!(c.turning_number(), Some(1));
+    }
+
+    #[test]
+    fn rejects_degenerate_curves() {
+        let e = build("x".into(), raw(&[(0., 0.), (1., 1.), (0., 0.)]), "x").unwrap_err();
+        assert!(
+            matches!(e, CurveError::TooFewPoints { distinct: 2, .. }),
+            "{e}"
+        );
+        let e = build(
+            "x".into(),
+            raw(&[(0., 0.), (1., 1.), (3., 3.), (2., 2.)]),
+            "x",
+        )
+        .unwrap_err();
+        assert!(matches!(e, CurveError::ZeroArea { .. }), "{e}");
+        let e = build("x".into(), raw(&[(0., 0.), (1., f64::NAN), (3., 3.)]), "x").unwrap_err();
+        assert!(matches!(e, CurveError::NonFinite { index: 1, .. }), "{e}");
+        let e = build("x".into(), raw(&[(0., 0.), (1., 1e40), (3., 3.)]), "x").unwrap_err();
+        assert!(matches!(e, CurveError::OutOfRange { index: 1, .. }), "{e}");
+    }
+}

@@ -1,0 +1,207 @@
+//! Curves: reading, cleaning and orienting closed polygons.
+//!
+//! A [`Curve`] can only be built by parsing and cleaning, so later stages
+//! take `&Curve` without re-checking it: it has at least three distinct
+//! points, finite coordinates in the range where the exact predicates are
+//! safe, no consecutive duplicates (the closing point is not repeated), and
+//! not all points on one line. When its turning number is −1 it has been
+//! reversed (see [`Curve::reversed`]) so that its turning number is +1.
+//!
+//! Formats (chosen by file extension):
+//! - JSON: `{"name": "...", "points": [[x, y], ...]}` or a bare array of
+//!   `[x, y]` pairs (y up);
+//! - text (`.txt`, `.xy`, `.csv`): one `x y` per line, separated by
+//!   whitespace or a comma, `#` starts a comment (y up);
+//! - SVG: the first closed subpath in document order of any `path`,
+//!   `polygon`, `rect`, `circle` or `ellipse`, with transforms applied,
+//!   Béziers flattened to [`SVG_FLATTEN_TOLERANCE`] of the shape's size,
+//!   and y flipped (SVG is y down).
+
+mod clean;
+mod error;
+mod json;
+mod svg;
+mod text;
+
+pub use clean::{MAX_COORDINATE, MAX_POINTS, MIN_COORDINATE};
+pub use error::CurveError;
+pub use svg::SVG_FLATTEN_TOLERANCE;
+
+use crate::geom::Point;
+use crate::geom::polygon::{self, Turning};
+use std::path::Path;
+
+/// Largest curve file accepted, in bytes (64 MiB).
+pub const MAX_FILE_BYTES: u64 = 64 << 20;
+
+/// A cleaned, oriented closed polygon.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Curve {
+    /// The curve's name: the JSON `name` field, else the file stem.
+    pub name: String,
+    /// The vertices in oriented order (y up), without a repeated closing
+    /// point or consecutive duplicates.
+    pub points: Vec<Point>,
+    /// True when the curve was given clockwise (turning number −1) and has
+    /// been reversed; the first point stays first.
+    pub reversed: bool,
+    /// The turning number of the cleaned curve as given (before any
+    /// reversal); [`Turning::Cusp`] when the curve doubles back on itself.
+    pub turning_as_given: Turning,
+    /// How many points cleaning dropped (a repeated closing point and
+    /// consecutive duplicates).
+    pub dropped: usize,
+}
+
+impl Curve {
+    /// Reads and cleans a curve file; the format follows the extension.
+    ///
+    /// # Errors
+    ///
+    /// Any [`CurveError`]: the file is missing or unreadable, too large,
+    /// has an unknown extension or bad syntax, or the curve is degenerate.
+    pub fn from_path(path: impl AsRef<Path>) -> Result<Curve, CurveError> {
+        let path = path.as_ref();
+        let label = path.display().to_string();
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .unwrap_or_default();
+        let format = Format::from_extension(&ext).ok_or_else(|| CurveError::UnknownFormat {
+            path: label.clone(),
+            extension: ext.clone(),
+        })?;
+        let io = |source| CurveError::Io {
+            path: label.clone(),
+            source,
+        };
+        let meta = std::fs::metadata(path).map_err(io)?;
+        if meta.is_dir() {
+            return Err(CurveError::IsDirectory { path: label });
+        }
+        if meta.len() > MAX_FILE_BYTES {
+            return Err(CurveError::TooLarge {
+                path: label,
+                what: format!("{} bytes", meta.len()),
+                limit: format!("{MAX_FILE_BYTES} bytes"),
+            });
+        }
+        let bytes = std::fs::read(path).map_err(io)?;
+        let stem = path
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("curve")
+            .to_string();
+        Curve::from_bytes(&bytes, format, &label, &stem)
+    }
+
+    /// Parses and cleans a curve from memory. `label` names the source in
+    /// error messages; `default_name` is used when the data has no name.
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::from_path`], except the I/O errors.
+    pub fn from_bytes(
+        bytes: &[u8],
+        format: Format,
+        label: &str,
+        default_name: &str,
+    ) -> Result<Curve, CurveError> {
+        let raw = match format {
+            Format::Json => json::parse(bytes, label)?,
+            Format::Text => text::parse(bytes, label)?,
+            Format::Svg => svg::parse(bytes, label)?,
+        };
+        let name = raw.name.unwrap_or_else(|| default_name.to_string());
+        clean::build(name, raw.points, label)
+    }
+
+    /// Parses a JSON curve from a string (see the module docs for the
+    /// format).
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::from_bytes`].
+    pub fn from_json_str(json: &str, label: &str) -> Result<Curve, CurveError> {
+        Curve::from_bytes(json.as_bytes(), Format::Json, label, "curve")
+    }
+
+    /// Builds a curve from points already in memory (cleaning and orienting
+    /// them as a file would be).
+    ///
+    /// # Errors
+    ///
+    /// The degenerate-curve variants of [`CurveError`].
+    pub fn from_points(name: &str, points: Vec<Point>) -> Result<Curve, CurveError> {
+        let raw = points
+            .into_iter()
+            .enumerate()
+            .map(|(i, p)| (p, i + 1))
+            .collect();
+        clean::build(name.to_string(), raw, name)
+    }
+
+    /// Number of vertices.
+    pub fn len(&self) -> usize {
+        self.points.len()
+    }
+
+    /// Always false: a curve has at least three points.
+    pub fn is_empty(&self) -> bool {
+        self.points.is_empty()
+    }
+
+    /// The turning number of the oriented curve, or `None` at a cusp.
+    pub fn turning_number(&self) -> Option<i64> {
+        match polygon::turning_number(&self.points) {
+            Turning::Number(k) => Some(k),
+            Turning::Cusp(_) => None,
+        }
+    }
+
+    /// The turning number as given (before reversal), or `None` at a cusp.
+    pub fn turning_number_as_given(&self) -> Option<i64> {
+        match self.turning_as_given {
+            Turning::Number(k) => Some(k),
+            Turning::Cusp(_) => None,
+        }
+    }
+
+    /// True when no two edges of the curve touch except adjacent ones at
+    /// their shared vertex (decided exactly).
+    pub fn is_simple(&self) -> bool {
+        polygon::is_simple(&self.points)
+    }
+}
+
+/// A curve file format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// JSON object with `points`, or a bare array of pairs.
+    Json,
+    /// One `x y` pair per line.
+    Text,
+    /// An SVG drawing.
+    Svg,
+}
+
+impl Format {
+    /// The format for a lower-case file extension, if known.
+    pub fn from_extension(ext: &str) -> Option<Format> {
+        match ext {
+            "json" => Some(Format::Json),
+            "txt" | "xy" | "csv" => Some(Format::Text),
+            "svg" => Some(Format::Svg),
+            _ => None,
+        }
+    }
+}
+
+/// Points as read, each with its 1-based position in the source (point
+/// number or line) for error messages, before cleaning.
+#[derive(Debug)]
+pub(crate) struct RawCurve {
+    pub(crate) name: Option<String>,
+    pub(crate) points: Vec<(Point, usize)>,
+}

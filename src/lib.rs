@@ -7,3 +7,7 @@
 pub mod geom;
 
 pub use geom::Point;
+pub mod immersion;
+pub mod quality;
+
+pub use immersion::{Immersion, ImmersionDefect, NotSelfOverlapping, triangulate};

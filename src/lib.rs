@@ -11,3 +11,4 @@ pub mod immersion;
 pub mod quality;
 
 pub use immersion::{Immersion, ImmersionDefect, NotSelfOverlapping, triangulate};
+pub use quality::{Quality, improve, triangulate_maxmin, triangulate_with};

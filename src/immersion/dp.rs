@@ -32,8 +32,6 @@ pub(crate) struct Table {
     /// `cols.get(j, i)` = Q[i][j].
     pub(crate) cols: BitMatrix,
     pub(crate) planes: HalfPlanes,
-    /// Bytes used by all tables while the DP ran.
-    pub(crate) bytes: usize,
 }
 
 /// Visit the valid apexes `k` of `(i, j)` word by word: `f(w, bits)` gets
@@ -67,7 +65,10 @@ pub(crate) fn decide(points: &[Point], progress: &mut dyn FnMut(f64)) -> Table {
     let mut rows = BitMatrix::new(n);
     let mut cols = BitMatrix::new(n);
     let mut ccw = CcwRows::new(n);
-    let bytes = rows.bytes() + cols.bytes() + planes.bytes() + ccw.bytes();
+    debug_assert_eq!(
+        rows.bytes() + cols.bytes() + planes.bytes() + ccw.bytes(),
+        super::dp_memory_bytes(n)
+    );
     let total = (n as f64).powi(3) / 6.0 + 1.0;
     let mut done = 0.0;
     for i in (0..n.saturating_sub(1)).rev() {
@@ -88,12 +89,7 @@ pub(crate) fn decide(points: &[Point], progress: &mut dyn FnMut(f64)) -> Table {
         done += len * len / 2.0;
         progress((done / total).min(1.0));
     }
-    Table {
-        rows,
-        cols,
-        planes,
-        bytes,
-    }
+    Table { rows, cols, planes }
 }
 
 /// A triangulation of the whole polygon from a filled table, or `None` when

@@ -2,7 +2,7 @@
 //! and returns a witness triangulation.
 //!
 //! Provenance: the classic O(n³) polygon-triangulation DP over sub-chains,
-//! used for self-overlapping curves by Shor and Van Wyk (seed 004, ref. [24]);
+//! used for self-overlapping curves by Shor and Van Wyk (seed 004, ref. \[24\]);
 //! the bitset formulation is DESIGN.md §3.
 //!
 //! `Q[i][j]` (i < j) is true when the sub-polygon `i, i+1, …, j` closed by the
@@ -49,6 +49,10 @@ pub(crate) fn for_valid_words(
         return false;
     }
     let ccw_row = ccw.row(j);
+    #[allow(
+        clippy::needless_range_loop,
+        reason = "w indexes several bit rows at once"
+    )]
     for w in (i + 1) / 64..=(j - 1) / 64 {
         let bits = open_range_word(w, i, j) & ccw_row[w] & planes.corner_word(i, j, w);
         if bits != 0 && f(w, bits) {

@@ -3,7 +3,7 @@
 //!
 //! Provenance: seed 004 §4 (Baxter et al., "Compatible embedding for 2D
 //! shape animation"), which takes the triangulation from Shor and Van Wyk
-//! (its ref. [24]); the exact, bitset form is DESIGN.md §3. A polygon with
+//! (its ref. \[24\]); the exact, bitset form is DESIGN.md §3. A polygon with
 //! turning number +1 is self-overlapping iff the abstract n-gon has a
 //! triangulation by diagonals whose n − 2 triangles are all *valid*
 //! ([`is_valid_triangle`]: strictly counter-clockwise, no vertex fan wraps).

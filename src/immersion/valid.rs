@@ -1,6 +1,6 @@
 //! Validity of one triangle of an immersed disk, exactly, and its bitset form.
 //!
-//! Provenance: DESIGN.md §3, after Shor and Van Wyk (seed 004, ref. [24]).
+//! Provenance: DESIGN.md §3, after Shor and Van Wyk (seed 004, ref. \[24\]).
 //! A triangle `(a, b, c)` with `a < b < c` (its corners in cyclic polygon
 //! order) is *valid* when
 //!
@@ -147,9 +147,9 @@ impl HalfPlanes {
             return false;
         }
         let r = &self.right;
-        !(r.get(i, k) && !r.get(i, j))
-            && !(r.get(k, j) && !r.get(k, i))
-            && !(r.get(j, i) && !r.get(j, k))
+        // Corner v with (u, w) fails iff u ∈ R_v and w ∉ R_v.
+        let fails = |v: usize, u: usize, w: usize| r.get(v, u) && !r.get(v, w);
+        !(fails(i, k, j) || fails(k, j, i) || fails(j, i, k))
     }
 
     /// Word `w` of the mask of apexes `k` for which `(i, k, j)` passes the
@@ -319,11 +319,10 @@ impl CcwRows {
 
     /// Fill `ccw.row(j)` for every `j > i` (rows `j ≤ i` are left as they are).
     pub(crate) fn compute(&mut self, points: &[Point], i: usize) {
-        let n = points.len();
         let o = points[i];
         self.order.clear();
-        for k in i + 1..n {
-            if points[k] == o {
+        for (k, &pk) in points.iter().enumerate().skip(i + 1) {
+            if pk == o {
                 // Coincident with p_i: no direction, never counter-clockwise.
                 self.ccw.row_mut(k).fill(0);
             } else {
@@ -359,6 +358,10 @@ impl CcwRows {
         self.window.row_mut(0).fill(0);
         let (mut b, mut e) = (0usize, 0usize); // window = doubled indices [b, e)
         let at = |x: usize| ord[x % m] as usize;
+        #[allow(
+            clippy::needless_range_loop,
+            reason = "t indexes the order and both group tables"
+        )]
         for t in 0..m {
             let j = ord[t];
             let pj = points[j as usize];

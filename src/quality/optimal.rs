@@ -2,7 +2,7 @@
 //!
 //! Provenance: DESIGN.md §3 ("the same DP can also maximise a decomposable
 //! objective"); the DP over sub-chains is Shor and Van Wyk's (seed 004,
-//! ref. [24]), the objective is Klincsek-style optimal polygon
+//! ref. \[24\]), the objective is Klincsek-style optimal polygon
 //! triangulation. Validity is decided exactly with the bitsets of
 //! [`crate::immersion`]; only the objective is measured in floats.
 //!

@@ -6,6 +6,7 @@
 //! ([`immerse::triangulate`]), Delaunay flips on that witness
 //! ([`immerse::improve`]), the max–min DP ([`immerse::triangulate_maxmin`],
 //! skipped above `--maxmin-up-to`, default 1000), and the DP tables' memory.
+//! `--sizes 500,1000` picks other n.
 
 use std::time::Instant;
 
@@ -49,9 +50,14 @@ fn main() {
         .nth(1)
         .and_then(|s| s.parse().ok())
         .unwrap_or(1000);
+    let sizes: Vec<usize> = std::env::args()
+        .skip_while(|a| a != "--sizes")
+        .nth(1)
+        .map(|s| s.split(',').filter_map(|x| x.parse().ok()).collect())
+        .unwrap_or_else(|| vec![100, 250, 500, 1000, 2000]);
     println!("| n | decision + witness | Delaunay flips | maxmin DP | DP memory | maxmin memory |");
     println!("|---|---|---|---|---|---|");
-    for n in [100, 250, 500, 1000, 2000] {
+    for n in sizes {
         let pts = spiral_strip(n, 2.0);
         let runs = if n >= 1000 { 5 } else { 11 };
         let witness = match triangulate(&pts) {

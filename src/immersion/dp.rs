@@ -49,12 +49,17 @@ pub(crate) fn for_valid_words(
         return false;
     }
     let ccw_row = ccw.row(j);
+    let corners = planes.corners(i, j);
+    let (first, last) = ((i + 1) / 64, (j - 1) / 64);
     #[allow(
         clippy::needless_range_loop,
         reason = "w indexes several bit rows at once"
     )]
-    for w in (i + 1) / 64..=(j - 1) / 64 {
-        let bits = open_range_word(w, i, j) & ccw_row[w] & planes.corner_word(i, j, w);
+    for w in first..=last {
+        let mut bits = ccw_row[w] & corners.word(w);
+        if w == first || w == last {
+            bits &= open_range_word(w, i, j);
+        }
         if bits != 0 && f(w, bits) {
             return true;
         }

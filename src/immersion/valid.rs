@@ -152,25 +152,44 @@ impl HalfPlanes {
         !(fails(i, k, j) || fails(k, j, i) || fails(j, i, k))
     }
 
-    /// Word `w` of the mask of apexes `k` for which `(i, k, j)` passes the
-    /// three corner tests and has no bad corner, given that it is
+    /// The masks of apexes `k` for which `(i, k, j)` passes the three
+    /// corner tests and has no bad corner, given that it is
     /// counter-clockwise (the caller ANDs the counter-clockwise set).
     #[inline]
-    pub(crate) fn corner_word(&self, i: usize, j: usize, w: usize) -> u64 {
-        // Corner i (u = k, w = j): fails iff k ∈ R_i and j ∉ R_i.
-        let at_i = if self.right.get(i, j) {
-            u64::MAX
-        } else {
-            !self.right.row(i)[w]
-        };
-        // Corner j (u = i, w = k): fails iff i ∈ R_j and k ∉ R_j.
-        let at_j = if self.right.get(j, i) {
-            self.right.row(j)[w]
-        } else {
-            u64::MAX
-        };
+    pub(crate) fn corners(&self, i: usize, j: usize) -> Corners<'_> {
+        Corners {
+            ri: self.right.row(i),
+            rj: self.right.row(j),
+            ti: self.right_t.row(i),
+            tj: self.right_t.row(j),
+            bad: &self.bad,
+            // Corner i (u = k, w = j): fails iff k ∈ R_i and j ∉ R_i.
+            keep_i: if self.right.get(i, j) { u64::MAX } else { 0 },
+            // Corner j (u = i, w = k): fails iff i ∈ R_j and k ∉ R_j.
+            keep_j: if self.right.get(j, i) { 0 } else { u64::MAX },
+        }
+    }
+}
+
+/// Corner-test masks for one chord `(i, j)`; see [`HalfPlanes::corners`].
+pub(crate) struct Corners<'a> {
+    ri: &'a [u64],
+    rj: &'a [u64],
+    ti: &'a [u64],
+    tj: &'a [u64],
+    bad: &'a [u64],
+    keep_i: u64,
+    keep_j: u64,
+}
+
+impl Corners<'_> {
+    /// Word `w` of the mask.
+    #[inline]
+    pub(crate) fn word(&self, w: usize) -> u64 {
+        let at_i = !self.ri[w] | self.keep_i;
+        let at_j = self.rj[w] | self.keep_j;
         // Corner k (u = j, w = i): fails iff j ∈ R_k and i ∉ R_k.
-        let at_k = !(self.right_t.row(j)[w] & !self.right_t.row(i)[w]);
+        let at_k = !(self.tj[w] & !self.ti[w]);
         at_i & at_j & at_k & !self.bad[w]
     }
 }
@@ -214,41 +233,84 @@ pub fn is_valid_triangle(points: &[Point], a: usize, b: usize, c: usize) -> bool
 /// A cheap float pseudo-angle sorts first; an insertion pass with the exact
 /// comparator (half-plane by coordinate comparison, then [`orient`]) repairs
 /// the few pairs that rounding put out of order, so the result is exact.
+/// Returns true when `packed` then holds trusted quantised keys aligned
+/// with `ks`: positions whose keys differ by two or more are on different
+/// rays.
 pub(crate) fn sort_around(
     points: &[Point],
     o: Point,
     ks: &mut Vec<u32>,
-    pairs: &mut Vec<(f64, u32)>,
-) {
+    packed: &mut Vec<u64>,
+) -> bool {
     // Diamond pseudo-angle in [0, 4): monotone in the true angle up to
     // rounding; only a hint for the exact repair below.
-    pairs.clear();
-    pairs.extend(ks.iter().map(|&k| {
+    let pseudo = |k: u32| {
         let q = points[k as usize];
         let (dx, dy) = (q.x - o.x, q.y - o.y);
         let s = dx.abs() + dy.abs();
-        // Diamond angle: 0..1 first quadrant, 1..2 second, 2..3 third, 3..4 fourth.
-        let key = if upper(o, q) {
+        if upper(o, q) {
             if dx >= 0.0 { dy / s } else { 1.0 - dx / s }
         } else if dx <= 0.0 {
             2.0 - dy / s
         } else {
             3.0 + dx / s
-        };
-        (key, k)
-    }));
-    pairs.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
-    ks.clear();
-    ks.extend(pairs.iter().map(|&(_, k)| k));
-    // Exact repair: insertion sort, O(n + inversions).
+        }
+    };
+    if ks.iter().all(|&k| k < 1 << INDEX_BITS) {
+        // Sort plain u64s: the key quantised to 42 bits above a 22-bit index.
+        let mut finite = true;
+        packed.clear();
+        packed.extend(ks.iter().map(|&k| {
+            let key = pseudo(k);
+            finite &= key.is_finite();
+            let q = (key * QUANTA).clamp(0.0, QUANTA * 4.0 - 1.0);
+            ((q as u64) << INDEX_BITS) | u64::from(k)
+        }));
+        packed.sort_unstable();
+        ks.clear();
+        ks.extend(packed.iter().map(|&x| (x & ((1 << INDEX_BITS) - 1)) as u32));
+        for x in packed.iter_mut() {
+            *x >>= INDEX_BITS;
+        }
+        // The float key is within a few ulps of the exact pseudo-angle (of
+        // order 1e-15 ≪ one quantum ≈ 9e-13), so keys two or more quanta
+        // apart are already in their exact order; only closer pairs are
+        // compared exactly. Non-finite keys (overflowing differences) are
+        // not trusted at all.
+        let trusted = finite;
+        repair(points, o, ks, packed, trusted);
+        trusted
+    } else {
+        ks.sort_by(|&a, &b| pseudo(a).total_cmp(&pseudo(b)));
+        packed.clear();
+        packed.resize(ks.len(), 0);
+        repair(points, o, ks, packed, false);
+        false
+    }
+}
+
+/// Exact repair by insertion sort, O(n + inversions). With `trusted`
+/// keys (sorted ascending, aligned with `ks` and swapped along), a pair two
+/// or more quanta apart is known to be in order and is not compared.
+fn repair(points: &[Point], o: Point, ks: &mut [u32], keys: &mut [u64], trusted: bool) {
     for t in 1..ks.len() {
         let mut s = t;
-        while s > 0 && angle_less(points, o, ks[s], ks[s - 1]) {
+        while s > 0
+            && (!trusted || keys[s] < keys[s - 1] + 2)
+            && angle_less(points, o, ks[s], ks[s - 1])
+        {
             ks.swap(s, s - 1);
+            keys.swap(s, s - 1);
             s -= 1;
         }
     }
 }
+
+/// Quanta per unit of pseudo-angle in the packed keys of [`sort_around`].
+const QUANTA: f64 = (1u64 << 40) as f64;
+
+/// Index bits in the packed sort keys of [`sort_around`].
+const INDEX_BITS: u32 = 22;
 
 /// Is the direction `q − o` in the half-open upper half [0, π)? Exact.
 #[inline]
@@ -286,7 +348,7 @@ pub(crate) struct CcwRows {
     pub(crate) ccw: BitMatrix,
     window: BitMatrix, // one row used as the running window
     order: Vec<u32>,
-    keys: Vec<(f64, u32)>,
+    keys: Vec<u64>,
     group_end: Vec<usize>,
     group_start: Vec<usize>,
 }
@@ -317,7 +379,8 @@ impl CcwRows {
         self.ccw.bytes() + self.window.bytes()
     }
 
-    /// Fill `ccw.row(j)` for every `j > i` (rows `j ≤ i` are left as they are).
+    /// Fill `ccw.row(j)` for every `j > i` (rows `j ≤ i` are left as they
+    /// are; so are the words of each row below the word of bit `i + 1`).
     pub(crate) fn compute(&mut self, points: &[Point], i: usize) {
         let o = points[i];
         self.order.clear();
@@ -333,7 +396,7 @@ impl CcwRows {
         if m == 0 {
             return;
         }
-        sort_around(points, o, &mut self.order, &mut self.keys);
+        let trusted = sort_around(points, o, &mut self.order, &mut self.keys);
         // Ray groups: runs of equal angle (never wrap: the order starts at
         // angle 0 and nothing precedes it).
         self.group_start.clear();
@@ -342,7 +405,8 @@ impl CcwRows {
         self.group_end.resize(m, m);
         let ord = &self.order;
         for t in 1..m {
-            self.group_start[t] = if same_ray(points, o, ord[t - 1], ord[t]) {
+            let far = trusted && self.keys[t] >= self.keys[t - 1] + 2;
+            self.group_start[t] = if !far && same_ray(points, o, ord[t - 1], ord[t]) {
                 self.group_start[t - 1]
             } else {
                 t
@@ -380,9 +444,10 @@ impl CcwRows {
                 self.window.toggle(0, at(b));
                 b += 1;
             }
-            let words = self.window.words();
-            let (src, dst) = (&self.window.data[..words], j as usize);
-            self.ccw.row_mut(dst).copy_from_slice(src);
+            // Only apexes k > i are ever read: copy from the word of i + 1.
+            let (from, words) = ((i + 1) / 64, self.window.words());
+            let src = &self.window.data[from..words];
+            self.ccw.row_mut(j as usize)[from..].copy_from_slice(src);
         }
     }
 }
@@ -418,7 +483,19 @@ mod tests {
             let n = 3 + (r() % 12) as usize;
             let g = if round % 2 == 0 { 4 } else { 1000 };
             let pts: Vec<Point> = (0..n)
-                .map(|_| Point::new((r() % g) as f64, (r() % g) as f64))
+                .map(|_| {
+                    let (x, y) = ((r() % g) as f64, (r() % g) as f64);
+                    match round % 4 {
+                        // Nearly collinear: a line nudged by a few ulps.
+                        1 => {
+                            let y = 0.1 * x + 0.3;
+                            Point::new(x, f64::from_bits(y.to_bits() + r() % 3) - 1e-17)
+                        }
+                        // Large magnitudes, still safe for the predicates.
+                        3 => Point::new(x * 1e150, -y * 1e150),
+                        _ => Point::new(x, y),
+                    }
+                })
                 .collect();
             let hp = HalfPlanes::new(&pts);
             let mut rows = CcwRows::new(n);
@@ -435,10 +512,72 @@ mod tests {
                         let bit = rows.ccw.get(j, k)
                             && !hp.bad_flags[i]
                             && !hp.bad_flags[j]
-                            && hp.corner_word(i, j, k / 64) >> (k % 64) & 1 == 1;
+                            && hp.corners(i, j).word(k / 64) >> (k % 64) & 1 == 1;
                         assert_eq!(bit, exact, "{pts:?} {i} {k} {j}");
                     }
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn multi_word_rows_agree_with_the_definition() {
+        let mut r = rng(99);
+        let n = 150;
+        let pts: Vec<Point> = (0..n)
+            .map(|_| Point::new((r() % 50) as f64, (r() % 50) as f64))
+            .collect();
+        let hp = HalfPlanes::new(&pts);
+        let mut rows = CcwRows::new(n);
+        for i in (0..n).rev() {
+            rows.compute(&pts, i);
+            if ![0, 1, 62, 63, 64, 65, 100, 127, 128, 140].contains(&i) {
+                continue;
+            }
+            for j in i + 2..n {
+                for k in i + 1..j {
+                    let exact = is_valid_triangle(&pts, i, k, j);
+                    let ccw = orient(pts[i], pts[k], pts[j]).is_ccw();
+                    assert_eq!(rows.ccw.get(j, k), ccw, "i={i} j={j} k={k}");
+                    let bit = ccw
+                        && !hp.bad_flags[i]
+                        && !hp.bad_flags[j]
+                        && hp.corners(i, j).word(k / 64) >> (k % 64) & 1 == 1;
+                    assert_eq!(bit, exact, "i={i} j={j} k={k}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn angular_sort_is_exact() {
+        let mut r = rng(5);
+        let o = Point::new(0.5, 0.5);
+        for round in 0..200 {
+            let m = 2 + (r() % 300) as usize;
+            let pts: Vec<Point> = (0..m)
+                .map(|_| {
+                    let (x, y) = ((r() % 9) as f64 - 4.0, (r() % 9) as f64 - 4.0);
+                    if round % 2 == 0 {
+                        // On or a few ulps off a few rays through o.
+                        let t = (r() % 7) as f64 + 1.0;
+                        let d = Point::new(x, y + 0.25);
+                        let p = o + d * t;
+                        Point::new(f64::from_bits(p.x.to_bits() + r() % 2), p.y)
+                    } else {
+                        Point::new(x, y)
+                    }
+                })
+                .filter(|&p| p != o)
+                .collect();
+            let mut ks: Vec<u32> = (0..pts.len() as u32).collect();
+            let mut buf = Vec::new();
+            sort_around(&pts, o, &mut ks, &mut buf);
+            for t in 1..ks.len() {
+                assert!(
+                    !angle_less(&pts, o, ks[t], ks[t - 1]),
+                    "round {round} at {t}"
+                );
             }
         }
     }

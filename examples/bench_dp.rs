@@ -6,7 +6,7 @@
 //! ([`immerse::triangulate`]), Delaunay flips on that witness
 //! ([`immerse::improve`]), the max–min DP ([`immerse::triangulate_maxmin`],
 //! skipped above `--maxmin-up-to`, default 1000), and the DP tables' memory.
-//! `--sizes 500,1000` picks other n.
+//! `--sizes 500,1000` picks other n; `--shape circle` uses a regular n-gon.
 
 use std::time::Instant;
 
@@ -26,6 +26,17 @@ fn spiral_strip(n: usize, turns: f64) -> Vec<Point> {
     let mut pts: Vec<Point> = (0..half).map(|i| at(i, 2.0)).collect();
     pts.extend((0..half).rev().map(|i| at(i, 1.0)));
     pts
+}
+
+/// A regular n-gon: convex, so every triangle is valid (the max–min DP's
+/// worst case for pruning).
+fn circle(n: usize) -> Vec<Point> {
+    (0..n)
+        .map(|i| {
+            let a = i as f64 * std::f64::consts::TAU / n as f64;
+            Point::new(a.cos(), a.sin())
+        })
+        .collect()
 }
 
 fn median_secs(runs: usize, mut f: impl FnMut()) -> f64 {
@@ -55,10 +66,18 @@ fn main() {
         .nth(1)
         .map(|s| s.split(',').filter_map(|x| x.parse().ok()).collect())
         .unwrap_or_else(|| vec![100, 250, 500, 1000, 2000]);
+    let shape = std::env::args()
+        .skip_while(|a| a != "--shape")
+        .nth(1)
+        .unwrap_or_else(|| "spiral".to_owned());
+    println!("shape: {shape}\n");
     println!("| n | decision + witness | Delaunay flips | maxmin DP | DP memory | maxmin memory |");
     println!("|---|---|---|---|---|---|");
     for n in sizes {
-        let pts = spiral_strip(n, 2.0);
+        let pts = match shape.as_str() {
+            "circle" => circle(n),
+            _ => spiral_strip(n, 2.0),
+        };
         let runs = if n >= 1000 { 5 } else { 11 };
         let witness = match triangulate(&pts) {
             Ok(imm) => imm,

@@ -143,8 +143,8 @@ impl Adjacency {
 /// Algorithm 1; module docs). The points are unchanged, only the triangles.
 ///
 /// The input should be an immersion triangulation (e.g. from
-/// [`crate::immersion::triangulate`]); other input is returned with
-/// whatever flips its locally well-formed quads allowed.
+/// [`crate::immersion::triangulate`]); input that fails
+/// [`crate::immersion::check`] is returned unchanged.
 ///
 /// # Examples
 ///
@@ -169,15 +169,10 @@ pub fn improve(imm: Immersion) -> Immersion {
         points,
         mut triangles,
     } = imm;
-    if triangles
-        .iter()
-        .flatten()
-        .any(|&v| v as usize >= points.len())
-    {
+    // Termination and validity rest on the input being an immersion
+    // triangulation; anything else is returned unchanged (O(n log n) check).
+    if crate::immersion::check(&points, &triangles).is_err() {
         return Immersion { points, triangles };
-    }
-    for t in triangles.iter_mut() {
-        t.sort_unstable();
     }
     let mut adj = Adjacency::new(&triangles);
     let mut stack: Vec<Edge> = adj.edges.keys().copied().collect();
@@ -244,6 +239,26 @@ mod tests {
         let out = improve(imm);
         assert_eq!(out.triangles, vec![[0, 1, 3], [1, 2, 3]]);
         assert!(out.is_immersion());
+    }
+
+    #[test]
+    fn non_immersions_come_back_unchanged() {
+        let pts = vec![
+            Point::new(0.0, 0.0),
+            Point::new(2.0, 0.5),
+            Point::new(4.0, 0.0),
+            Point::new(2.0, -0.5),
+        ]; // clockwise
+        let bad = Immersion {
+            points: pts,
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+        };
+        assert_eq!(improve(bad.clone()), bad);
+        let garbage = Immersion {
+            points: bad.points.clone(),
+            triangles: vec![[0, 7, 2], [3, 3, 3], [1, 0, 2]],
+        };
+        assert_eq!(improve(garbage.clone()), garbage);
     }
 
     #[test]

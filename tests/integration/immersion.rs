@@ -368,8 +368,18 @@ fn reference_curve_labels_are_reproduced() {
         assert_eq!(got.is_ok(), expect, "{name}: {got:?}");
         if let Ok(imm) = got {
             assert!(imm.is_immersion(), "{name}");
-            let del = improve(imm);
+            let del = improve(imm.clone());
             assert!(del.is_immersion(), "{name}");
+            let opt = triangulate_maxmin(&pts).expect("same curve");
+            assert!(opt.is_immersion(), "{name}");
+            assert!(del.min_angle() >= imm.min_angle(), "{name}");
+            assert!(opt.min_angle() >= del.min_angle() - 1e-12, "{name}");
+            println!(
+                "{name}: min angle any {:.4}°, delaunay {:.4}°, maxmin {:.4}°",
+                imm.min_angle().to_degrees(),
+                del.min_angle().to_degrees(),
+                opt.min_angle().to_degrees()
+            );
             yes += 1;
         } else {
             no += 1;

@@ -38,10 +38,18 @@
 //! ```
 #![deny(rustdoc::broken_intra_doc_links)]
 
+pub mod correspond;
 pub mod curve;
 pub mod error;
+pub mod frames;
 pub mod geom;
+pub mod immersion;
+pub mod morph;
+pub mod quality;
+pub mod tree;
 
 pub use curve::Curve;
 pub use error::{Error, Result};
 pub use geom::Point;
+pub use immersion::{Immersion, ImmersionDefect, NotSelfOverlapping, triangulate};
+pub use quality::{Quality, improve, triangulate_maxmin, triangulate_with};

@@ -4,4 +4,5 @@
 
 mod cli;
 mod curves;
+mod immersion;
 mod util;

@@ -1,0 +1,158 @@
+//! Better immersion triangulations than the DP's arbitrary witness.
+//!
+//! DP witnesses are very thin (minimum angles of 0.0005°–0.1° are typical).
+//! Two remedies, both producing triangulations that pass
+//! [`crate::immersion::check`]:
+//!
+//! - [`improve`]: immersed Delaunay edge flips, seed 004 §4 Algorithm 1
+//!   the paper's method.
+//! - [`triangulate_maxmin`]: the interval DP maximising the minimum angle
+//!   exactly over all valid triangulations (DESIGN.md §3), O(n³).
+//!
+//! [`Quality`] names the choice (`any`, `delaunay`, `maxmin` on the command
+//! line) and [`triangulate_with`] dispatches on it. Guaranteed order of the
+//! minimum angles: `maxmin ≥ delaunay ≥ any` (flips only raise the sorted
+//! angle vector; the DP is optimal).
+
+mod flips;
+mod optimal;
+
+pub use flips::improve;
+
+use std::fmt;
+use std::str::FromStr;
+
+use crate::geom::Point;
+use crate::immersion::{Immersion, NotSelfOverlapping, precheck, triangulate_progress};
+
+/// Which immersion triangulation to compute.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Quality {
+    /// The DP's witness, whatever it is (fastest, thin triangles).
+    Any,
+    /// The witness improved by immersed Delaunay flips ([`improve`]).
+    #[default]
+    Delaunay,
+    /// The valid triangulation with the largest minimum angle
+    /// ([`triangulate_maxmin`]).
+    MaxMin,
+}
+
+impl Quality {
+    /// Every variant, in CLI order.
+    pub const ALL: [Quality; 3] = [Quality::Any, Quality::Delaunay, Quality::MaxMin];
+
+    /// The command-line value: `any`, `delaunay` or `maxmin`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Quality::Any => "any",
+            Quality::Delaunay => "delaunay",
+            Quality::MaxMin => "maxmin",
+        }
+    }
+}
+
+impl fmt::Display for Quality {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// A string that names no [`Quality`].
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown triangulation quality '{0}', expected any, delaunay or maxmin")]
+pub struct UnknownQuality(pub String);
+
+impl FromStr for Quality {
+    type Err = UnknownQuality;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Quality::ALL
+            .into_iter()
+            .find(|q| q.as_str() == s)
+            .ok_or_else(|| UnknownQuality(s.to_owned()))
+    }
+}
+
+/// The valid triangulation that maximises the minimum angle; among exact
+/// ties, the one with the largest sum over triangles of sin² of the
+/// triangle's minimum angle, then the smallest apex index (see the
+/// `optimal` module docs). O(n³) time, 36n² bytes of tables.
+///
+/// # Errors
+///
+/// As [`crate::immersion::triangulate`].
+pub fn triangulate_maxmin(points: &[Point]) -> Result<Immersion, NotSelfOverlapping> {
+    triangulate_with_progress(points, Quality::MaxMin, &mut |_| {})
+}
+
+/// Triangulate with the chosen [`Quality`].
+///
+/// # Examples
+///
+/// ```
+/// use immerse::geom::Point;
+/// use immerse::quality::{triangulate_with, Quality};
+/// let hex: Vec<Point> = (0..6)
+///     .map(|i| {
+///         let a = i as f64 * std::f64::consts::TAU / 6.0;
+///         Point::new(a.cos(), a.sin())
+///     })
+///     .collect();
+/// for q in Quality::ALL {
+///     assert!(triangulate_with(&hex, q)?.is_immersion());
+/// }
+/// # Ok::<(), immerse::immersion::NotSelfOverlapping>(())
+/// ```
+///
+/// # Errors
+///
+/// As [`crate::immersion::triangulate`].
+pub fn triangulate_with(points: &[Point], q: Quality) -> Result<Immersion, NotSelfOverlapping> {
+    triangulate_with_progress(points, q, &mut |_| {})
+}
+
+/// [`triangulate_with`] with a progress callback receiving the fraction of
+/// the work done, in [0, 1].
+///
+/// # Errors
+///
+/// As [`crate::immersion::triangulate`].
+pub fn triangulate_with_progress(
+    points: &[Point],
+    q: Quality,
+    progress: &mut dyn FnMut(f64),
+) -> Result<Immersion, NotSelfOverlapping> {
+    match q {
+        Quality::Any => triangulate_progress(points, progress),
+        Quality::Delaunay => triangulate_progress(points, progress).map(improve),
+        Quality::MaxMin => {
+            precheck(points)?;
+            let triangles = optimal::maxmin(points, progress)
+                .ok_or(NotSelfOverlapping::NoValidTriangulation)?;
+            Ok(Immersion {
+                points: points.to_vec(),
+                triangles,
+            })
+        }
+    }
+}
+
+/// Working memory of [`triangulate_maxmin`] for `n` points, in bytes.
+pub fn maxmin_memory_bytes(n: usize) -> usize {
+    optimal::memory_bytes(n)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quality_names_round_trip() {
+        for q in Quality::ALL {
+            assert_eq!(q.as_str().parse::<Quality>(), Ok(q));
+            assert_eq!(q.to_string(), q.as_str());
+        }
+        assert!("best".parse::<Quality>().is_err());
+    }
+}

@@ -1,13 +1,14 @@
 //! The command-line definition (clap derive). Each subcommand's arguments
 //! are turned into library options in `commands/`.
 
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
 const AFTER_HELP: &str = "\
 Examples:
   immerse check curves/spiral-strip-540deg-n120.json
-  immerse check drawing.svg --json
+  immerse triangulate curves/ribbon-curl.svg -o ribbon.png
+  immerse morph curves/spiral-strip-400deg-n30.json curves/curl-strip-n10.json -o out.gif
 
 Exit codes: 0 success (or yes), 1 a negative answer (e.g. not self-overlapping),
 2 bad input or usage; the cause is printed on one line to stderr.";
@@ -25,16 +26,34 @@ pub(crate) struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub(crate) enum Command {
-    /// Report the facts of a curve: points, turning number, simplicity.
+    /// Decide whether a curve is self-overlapping, and report its facts.
     ///
     /// Reads a curve (.json, .txt or .svg), cleans it (drops a repeated
     /// closing point and consecutive duplicates) and orients it (a
-    /// clockwise curve is reversed). Prints what was found; with --json,
-    /// one JSON object on stdout.
+    /// clockwise curve is reversed). A curve is self-overlapping when it
+    /// bounds an immersed disk; the answer is exact. Exit code 0 when it is,
+    /// 1 when it is not (with the reason).
     #[command(
         after_help = "Examples:\n  immerse check curves/letter-S-n62.json\n  immerse check ribbon.svg --json"
     )]
     Check(CheckArgs),
+    /// Triangulate the immersed disk that a curve bounds.
+    ///
+    /// Prints the triangulation (every triangle counter-clockwise, over the
+    /// curve's own vertices) and its dual-tree facts; with -o, draws it.
+    #[command(
+        after_help = "Examples:\n  immerse triangulate curves/spiral-strip-400deg-n30.json --json\n  immerse triangulate curves/tail-loop.svg -o tail.png --quality maxmin"
+    )]
+    Triangulate(TriangulateArgs),
+    /// Morph one self-overlapping curve into another.
+    ///
+    /// Every frame is the boundary of an immersed disk, checked exactly
+    /// before it is written. Writes JSON (--json FILE), images (-o), or
+    /// both; --metrics prints the quality measures.
+    #[command(
+        after_help = "Examples:\n  immerse morph a.json b.json --frames 40 --json morph.json\n  immerse morph a.svg b.svg -o frames/ --format png --size 800x800\n  immerse morph a.svg b.svg -o morph.gif --easing ease-in-out --ping-pong"
+    )]
+    Morph(MorphArgs),
 }
 
 /// Arguments of `immerse check`.
@@ -45,9 +64,161 @@ pub(crate) struct CheckArgs {
     /// Print one JSON object on stdout instead of text.
     ///
     /// Fields: points (count after cleaning), turning_number (of the curve
-    /// as given), simple, reversed, self_overlapping, reason.
+    /// as given), simple, reversed, self_overlapping, reason (null when
+    /// self-overlapping).
     #[arg(long)]
     pub(crate) json: bool,
+}
+
+/// Triangulation quality (see `immerse triangulate --help`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum QualityArg {
+    /// The dynamic program's witness: any valid triangulation (thin).
+    Any,
+    /// The witness improved by immersed Delaunay edge flips.
+    Delaunay,
+    /// The valid triangulation maximising the minimum angle (slower).
+    Maxmin,
+}
+
+/// Arguments of `immerse triangulate`.
+#[derive(Debug, Args)]
+pub(crate) struct TriangulateArgs {
+    /// The curve file (.json, .txt, .csv, .xy or .svg).
+    pub(crate) curve: PathBuf,
+    /// Print the triangulation as JSON on stdout.
+    ///
+    /// Fields: points (oriented order, y up), triangles (counter-clockwise
+    /// index triples), reversed, spine (triangle indices), pivot_vertex,
+    /// root_triangle.
+    #[arg(long)]
+    pub(crate) json: bool,
+    /// Which triangulation to compute.
+    #[arg(long, value_enum, default_value_t = QualityArg::Delaunay)]
+    pub(crate) quality: QualityArg,
+    /// Draw the triangulation to a .png or .svg file.
+    #[arg(short, long, value_name = "FILE")]
+    pub(crate) output: Option<PathBuf>,
+    /// Image size in pixels, WIDTHxHEIGHT.
+    #[arg(long, value_name = "WxH", default_value = "800x800", value_parser = parse_size)]
+    pub(crate) size: (u32, u32),
+    /// Replace an existing output file.
+    #[arg(long)]
+    pub(crate) force: bool,
+}
+
+/// Third-vertex path of the morph.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum PathArg {
+    /// Rotate-slide angles blended just enough to stay an immersion (guaranteed).
+    Hybrid,
+    /// Linear interpolation of triangle angles (guaranteed, more distortion).
+    Angle,
+    /// The paper's rotate-and-slide path (checked; falls back to hybrid).
+    RotateSlide,
+    /// Linear base-relative coordinates (checked; falls back to hybrid).
+    Linear,
+}
+
+/// Image or animation format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum FormatArg {
+    /// A folder of frame_0000.png, frame_0001.png, ...
+    Png,
+    /// One animated GIF file.
+    Gif,
+    /// A folder of frame_0000.svg, ...
+    Svg,
+    /// One animated SVG file (SMIL).
+    AnimatedSvg,
+}
+
+/// How vertex counts are matched.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum CountsArg {
+    /// Insert vertices on the longest edges; original vertices stay put.
+    Insert,
+    /// Resample both curves evenly by arc length.
+    Resample,
+}
+
+/// Arguments of `immerse morph`.
+#[derive(Debug, Args)]
+pub(crate) struct MorphArgs {
+    /// The source curve file.
+    pub(crate) source: PathBuf,
+    /// The target curve file.
+    pub(crate) target: PathBuf,
+    /// Number of frames, including the two ends.
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(2..=100_000))]
+    pub(crate) frames: u32,
+    /// How each triangle's third vertex travels.
+    #[arg(long, value_enum, default_value_t = PathArg::Hybrid)]
+    pub(crate) path: PathArg,
+    /// Triangulation quality of each curve.
+    #[arg(long, value_enum, default_value_t = QualityArg::Delaunay)]
+    pub(crate) quality: QualityArg,
+    /// How vertex counts are matched.
+    #[arg(long, value_enum, default_value_t = CountsArg::Insert)]
+    pub(crate) counts: CountsArg,
+    /// Timing of the frames: linear, ease-in, ease-out, ease-in-out or
+    /// cubic-bezier(x1,y1,x2,y2).
+    #[arg(long, default_value = "linear")]
+    pub(crate) easing: String,
+    /// Print the quality metrics (area-matrix rank, variance, minimum
+    /// angle, ballooning, area share, valid frames) to stdout.
+    #[arg(long)]
+    pub(crate) metrics: bool,
+    /// Write the frames as JSON to this file ("-" for stdout).
+    #[arg(long, value_name = "FILE")]
+    pub(crate) json: Option<PathBuf>,
+    /// Write images: a folder for png/svg sequences, a file for gif or
+    /// animated-svg.
+    #[arg(short, long, value_name = "PATH")]
+    pub(crate) output: Option<PathBuf>,
+    /// Image format; by default taken from the -o extension (.gif, .svg
+    /// for animated SVG) and png for a folder.
+    #[arg(long, value_enum)]
+    pub(crate) format: Option<FormatArg>,
+    /// Image size in pixels, WIDTHxHEIGHT.
+    #[arg(long, value_name = "WxH", default_value = "600x600", value_parser = parse_size)]
+    pub(crate) size: (u32, u32),
+    /// Frames per second of a GIF or animated SVG.
+    #[arg(long, default_value_t = 30.0)]
+    pub(crate) fps: f64,
+    /// Play the animation forwards then backwards, repeating.
+    #[arg(long, conflicts_with = "once")]
+    pub(crate) ping_pong: bool,
+    /// Play the animation once instead of looping.
+    #[arg(long)]
+    pub(crate) once: bool,
+    /// Draw the triangulation's edges in images.
+    #[arg(long)]
+    pub(crate) wireframe: bool,
+    /// Draw the source and target faintly behind every frame.
+    #[arg(long)]
+    pub(crate) onion: bool,
+    /// Replace existing output files (and write into a non-empty folder).
+    #[arg(long)]
+    pub(crate) force: bool,
+    /// No progress bars or notices on stderr.
+    #[arg(short, long)]
+    pub(crate) quiet: bool,
+}
+
+/// Parses `WxH`.
+pub(crate) fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("'{s}' is not WIDTHxHEIGHT, e.g. 800x600"))?;
+    let num = |v: &str| {
+        v.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|&n| (1..=16384).contains(&n))
+            .ok_or_else(|| format!("'{v}' in '{s}' is not a size from 1 to 16384"))
+    };
+    Ok((num(w)?, num(h)?))
 }
 
 #[cfg(test)]
@@ -63,8 +234,25 @@ mod tests {
     #[test]
     fn check_parses_json_flag() {
         let cli = Cli::try_parse_from(["immerse", "check", "a.json", "--json"]).unwrap();
-        let Command::Check(args) = cli.command;
+        let Command::Check(args) = cli.command else {
+            panic!("not check")
+        };
         assert!(args.json);
         assert_eq!(args.curve, PathBuf::from("a.json"));
+    }
+
+    #[test]
+    fn morph_defaults_and_size() {
+        let cli = Cli::try_parse_from(["immerse", "morph", "a.json", "b.json"]).unwrap();
+        let Command::Morph(m) = cli.command else {
+            panic!("not morph")
+        };
+        assert_eq!(m.frames, 60);
+        assert_eq!(m.path, PathArg::Hybrid);
+        assert_eq!(m.size, (600, 600));
+        assert!(Cli::try_parse_from(["immerse", "morph", "a", "b", "--frames", "1"]).is_err());
+        assert_eq!(parse_size("640x480"), Ok((640, 480)));
+        assert!(parse_size("0x480").is_err());
+        assert!(parse_size("640").is_err());
     }
 }

@@ -15,12 +15,15 @@ use std::process::ExitCode;
 pub(crate) enum Outcome {
     /// The command did its job (or answered yes).
     Success,
+    /// The command answered no (exit code 1).
+    Negative,
 }
 
 fn main() -> ExitCode {
     let cli = args::Cli::parse();
     match commands::run(cli) {
         Ok(Outcome::Success) => ExitCode::SUCCESS,
+        Ok(Outcome::Negative) => ExitCode::from(1),
         Err(err) => {
             if is_broken_pipe(&err) {
                 return ExitCode::SUCCESS;

@@ -8,6 +8,11 @@ pub(crate) fn error(err: &anyhow::Error) {
     let _ = writeln!(std::io::stderr().lock(), "immerse: {err:#}");
 }
 
+/// Prints a one-line notice to stderr.
+pub(crate) fn note(message: &str) {
+    let _ = writeln!(std::io::stderr().lock(), "immerse: {message}");
+}
+
 /// Writes `text` and a newline to stdout.
 pub(crate) fn print(text: &str) -> anyhow::Result<()> {
     let mut out = std::io::stdout().lock();

@@ -1,10 +1,11 @@
-//! `immerse check`: the facts of one curve.
+//! `immerse check`: is a curve self-overlapping, and its facts.
 
 use crate::Outcome;
 use crate::args::CheckArgs;
 use crate::output;
 use immerse::Curve;
 use immerse::geom::polygon;
+use immerse::immersion;
 use serde::Serialize;
 
 /// The JSON report of `immerse check --json`.
@@ -19,22 +20,41 @@ struct CheckReport {
     simple: bool,
     /// True when the curve was clockwise and has been reversed.
     reversed: bool,
+    /// True when the curve bounds an immersed disk.
+    self_overlapping: bool,
+    /// Why the curve is not self-overlapping; null when it is.
+    reason: Option<String>,
 }
 
 pub(crate) fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
     let curve = Curve::from_path(&args.curve)?;
     let crossing = polygon::first_self_intersection(&curve.points);
+    let verdict = immersion::triangulate(&curve.points);
     let report = CheckReport {
         points: curve.len(),
         turning_number: curve.turning_number_as_given(),
         simple: crossing.is_none(),
         reversed: curve.reversed,
+        self_overlapping: verdict.is_ok(),
+        reason: verdict.as_ref().err().map(ToString::to_string),
+    };
+    let outcome = if report.self_overlapping {
+        Outcome::Success
+    } else {
+        Outcome::Negative
     };
     if args.json {
         output::print_json(&report)?;
-        return Ok(Outcome::Success);
+        return Ok(outcome);
     }
-    let mut lines = vec![format!("{}: {}", args.curve.display(), curve.name)];
+    let mut lines = vec![format!(
+        "{}: {}",
+        args.curve.display(),
+        match &report.reason {
+            None => "self-overlapping".to_string(),
+            Some(r) => format!("not self-overlapping ({r})"),
+        }
+    )];
     let dropped = if curve.dropped > 0 {
         format!(" ({} repeated point(s) dropped)", curve.dropped)
     } else {
@@ -60,5 +80,5 @@ pub(crate) fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
         Some((i, j)) => format!("  simple:         no (edges {i} and {j} touch)"),
     });
     output::print(&lines.join("\n"))?;
-    Ok(Outcome::Success)
+    Ok(outcome)
 }

@@ -1,14 +1,52 @@
 //! One module per subcommand: each turns its arguments into library
-//! options, runs, and reports.
+//! options, runs, and reports. Shared glue lives here.
 
 mod check;
+mod morph;
+mod triangulate;
 
 use crate::Outcome;
-use crate::args::{Cli, Command};
+use crate::args::{Cli, Command, QualityArg};
+use immerse::Quality;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::IsTerminal;
 
 /// Runs the parsed command line.
 pub(crate) fn run(cli: Cli) -> anyhow::Result<Outcome> {
     match cli.command {
         Command::Check(args) => check::run(&args),
+        Command::Triangulate(args) => triangulate::run(&args),
+        Command::Morph(args) => morph::run(&args),
     }
+}
+
+impl From<QualityArg> for Quality {
+    fn from(q: QualityArg) -> Quality {
+        match q {
+            QualityArg::Any => Quality::Any,
+            QualityArg::Delaunay => Quality::Delaunay,
+            QualityArg::Maxmin => Quality::MaxMin,
+        }
+    }
+}
+
+/// A progress bar on stderr, hidden when stderr is not a terminal or when
+/// `quiet` is set.
+pub(crate) fn progress_bar(len: u64, message: &str, quiet: bool) -> ProgressBar {
+    let bar = ProgressBar::new(len);
+    if quiet || !std::io::stderr().is_terminal() {
+        bar.set_draw_target(ProgressDrawTarget::hidden());
+    }
+    bar.set_style(
+        ProgressStyle::with_template("{msg:>12} [{bar:40}] {pos}/{len} ({eta})")
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    bar.set_message(message.to_string());
+    bar
+}
+
+/// Converts library points to the render crate's plain points.
+pub(crate) fn plain_points(points: &[immerse::Point]) -> Vec<[f64; 2]> {
+    points.iter().map(|p| [p.x, p.y]).collect()
 }

@@ -1,0 +1,182 @@
+//! `immerse morph`: frames from one curve to another.
+
+use super::{plain_points, progress_bar};
+use crate::Outcome;
+use crate::args::{CountsArg, FormatArg, MorphArgs, PathArg};
+use crate::output;
+use anyhow::Context;
+use immerse::frames::{Morph, metrics};
+use immerse::morph::{
+    Counts, CurveMorphError, CurveMorphOptions, MorphOptions, ThirdVertexPath, morph_curves,
+};
+use immerse::{Curve, Quality};
+use immerse_render as render;
+use std::path::Path;
+
+impl From<PathArg> for ThirdVertexPath {
+    fn from(p: PathArg) -> ThirdVertexPath {
+        match p {
+            PathArg::Hybrid => ThirdVertexPath::Hybrid,
+            PathArg::Angle => ThirdVertexPath::Angle,
+            PathArg::RotateSlide => ThirdVertexPath::RotateSlide,
+            PathArg::Linear => ThirdVertexPath::Linear,
+        }
+    }
+}
+
+pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
+    let easing: render::Easing = args
+        .easing
+        .parse()
+        .with_context(|| format!("--easing '{}'", args.easing))?;
+    if !(args.fps.is_finite() && args.fps > 0.0 && args.fps <= 1000.0) {
+        anyhow::bail!("--fps {} is not a rate from 0 to 1000 frames per second", args.fps);
+    }
+    // Refuse to overwrite before doing any work.
+    if let Some(json) = &args.json
+        && json.as_os_str() != "-"
+        && !args.force
+        && json.exists()
+    {
+        anyhow::bail!("{} exists; pass --force to replace it", json.display());
+    }
+    let src = Curve::from_path(&args.source)?;
+    let dst = Curve::from_path(&args.target)?;
+    let times = render::frame_times(args.frames as usize, &easing);
+    let options = CurveMorphOptions::DEFAULT
+        .with_quality(Quality::from(args.quality))
+        .with_counts(match args.counts {
+            CountsArg::Insert => Counts::Insert,
+            CountsArg::Resample => Counts::Resample,
+        })
+        .with_morph(MorphOptions::DEFAULT.with_path(args.path.into()));
+    let morph = match morph_curves(&src.points, &dst.points, &times, &options) {
+        Ok((_, morph)) => morph,
+        Err(err @ CurveMorphError::NotSelfOverlapping { .. }) => {
+            let file = match err {
+                CurveMorphError::NotSelfOverlapping {
+                    side: immerse::morph::Side::Source,
+                    ..
+                } => &args.source,
+                _ => &args.target,
+            };
+            output::note(&format!("{}: {err}", file.display()));
+            return Ok(Outcome::Negative);
+        }
+        Err(err @ CurveMorphError::Incompatible) => {
+            output::note(&format!(
+                "{} and {}: {err}",
+                args.source.display(),
+                args.target.display()
+            ));
+            return Ok(Outcome::Negative);
+        }
+        Err(err) => return Err(err.into()),
+    };
+    if morph.fallback && !args.quiet {
+        output::note(&format!(
+            "the {} path folded a frame; used the hybrid path instead (every frame is an immersion)",
+            ThirdVertexPath::from(args.path)
+        ));
+    }
+    if let Some(json) = &args.json {
+        let text = serde_json::to_string(&morph)?;
+        if json.as_os_str() == "-" {
+            output::print(&text)?;
+        } else {
+            render::write_atomic(json, text.as_bytes(), args.force)?;
+        }
+    }
+    if let Some(out) = &args.output {
+        write_images(args, out, &morph)?;
+    }
+    if args.metrics {
+        let m = metrics(&morph.frames);
+        let opt = |v: Option<f64>| v.map_or("n/a (triangulation changes)".to_string(), |v| format!("{v:.6}"));
+        output::print(&format!(
+            "path                 {}{}\nframes               {} ({} valid)\narea rank (AR)       {}\narea variance (Var)  {}\nminimum angle        {:.4}° (inputs {:.4}°)\nballooning           {:.4}\nsmallest area share  {}",
+            morph.path,
+            if morph.fallback { " (fallback)" } else { "" },
+            m.frames,
+            m.valid_frames,
+            m.area_rank.map_or("n/a (triangulation changes)".to_string(), |r| r.to_string()),
+            opt(m.area_variance),
+            m.min_angle_deg,
+            m.endpoint_min_angle_deg,
+            m.ballooning,
+            opt(m.smallest_area_share),
+        ))?;
+    }
+    if args.json.is_none() && args.output.is_none() && !args.metrics && !args.quiet {
+        output::note(&format!(
+            "{} frames computed and verified; pass --json FILE or -o PATH to keep them",
+            morph.frames.len()
+        ));
+    }
+    Ok(Outcome::Success)
+}
+
+/// Renders the frames to `out` in the chosen format.
+pub(crate) fn write_images(args: &MorphArgs, out: &Path, morph: &Morph) -> anyhow::Result<()> {
+    let ext = out
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let format = args.format.unwrap_or(match ext.as_deref() {
+        Some("gif") => FormatArg::Gif,
+        Some("svg") => FormatArg::AnimatedSvg,
+        _ => FormatArg::Png,
+    });
+    let frames: Vec<render::Frame> = morph
+        .frames
+        .iter()
+        .map(|f| render::Frame::from_triangles(plain_points(&f.points), f.triangles.clone()))
+        .collect();
+    let style = render::Style::DEFAULT
+        .with_size(args.size.0, args.size.1)
+        .with_wireframe(args.wireframe)
+        .with_onion_skin(args.onion);
+    let looping = if args.ping_pong {
+        render::Loop::PingPong
+    } else if args.once {
+        render::Loop::Once
+    } else {
+        render::Loop::Loop
+    };
+    write_frames(&frames, out, format, &style, args.fps, looping, args.force, args.quiet)
+}
+
+/// Writes rendered frames in `format` to `out` with a progress bar.
+#[allow(clippy::too_many_arguments, reason = "plain glue between CLI options and the renderer")]
+pub(crate) fn write_frames(
+    frames: &[render::Frame],
+    out: &Path,
+    format: FormatArg,
+    style: &render::Style,
+    fps: f64,
+    looping: render::Loop,
+    force: bool,
+    quiet: bool,
+) -> anyhow::Result<()> {
+    let opts = render::Output::DEFAULT.with_force(force);
+    let total = match format {
+        FormatArg::Gif => looping.sequence(frames.len()).len(),
+        _ => frames.len(),
+    };
+    let bar = progress_bar(total as u64, "render", quiet);
+    let progress = |done: usize| bar.set_position(done as u64);
+    match format {
+        FormatArg::Png => {
+            render::write_png_sequence(frames, out, style, &opts, &progress)?;
+        }
+        FormatArg::Svg => {
+            render::write_svg_sequence(frames, out, style, &opts, &progress)?;
+        }
+        FormatArg::Gif => render::write_gif(frames, out, style, fps, looping, &opts, &progress)?,
+        FormatArg::AnimatedSvg => {
+            render::write_animated_svg(frames, out, style, fps, looping, &opts)?;
+        }
+    }
+    bar.finish_and_clear();
+    Ok(())
+}

@@ -1,0 +1,111 @@
+//! `immerse triangulate`: the immersion triangulation of one curve.
+
+use super::{plain_points, progress_bar};
+use crate::Outcome;
+use crate::args::TriangulateArgs;
+use crate::output;
+use anyhow::Context;
+use immerse::quality::triangulate_with_progress;
+use immerse::tree::{DualTree, RootChoice, root_triangle};
+use immerse::{Curve, Point, Quality};
+use immerse_render as render;
+use serde::Serialize;
+
+/// The JSON of `immerse triangulate --json` (DESIGN.md §10).
+#[derive(Debug, Serialize)]
+struct TriangulationJson {
+    /// Vertices in oriented order (turning number +1), y up.
+    points: Vec<[f64; 2]>,
+    /// Counter-clockwise triangles as index triples into `points`.
+    triangles: Vec<[u32; 3]>,
+    /// True when the curve was clockwise and has been reversed.
+    reversed: bool,
+    /// The spine: triangle indices from the pivot triangle to the other end.
+    spine: Vec<usize>,
+    /// The pivot vertex (index into `points`).
+    pivot_vertex: u32,
+    /// The root triangle of morph propagation (index into `triangles`).
+    root_triangle: usize,
+}
+
+pub(crate) fn run(args: &TriangulateArgs) -> anyhow::Result<Outcome> {
+    let curve = Curve::from_path(&args.curve)?;
+    let quality = Quality::from(args.quality);
+    let bar = progress_bar(1000, "triangulate", args.json || curve.len() < 1500);
+    let result = triangulate_with_progress(&curve.points, quality, &mut |f| {
+        bar.set_position((f * 1000.0) as u64);
+    });
+    bar.finish_and_clear();
+    let imm = match result {
+        Ok(imm) => imm,
+        Err(reason) => {
+            output::note(&format!(
+                "{}: not self-overlapping: {reason}",
+                args.curve.display()
+            ));
+            return Ok(Outcome::Negative);
+        }
+    };
+    let tree = DualTree::new(imm.points.len(), &imm.triangles)
+        .context("the triangulation's dual graph is not a tree; this is a bug in immerse")?;
+    let spine = tree.spine(&imm.points);
+    let root = root_triangle(&tree, &imm.points, RootChoice::Disk);
+    if let Some(path) = &args.output {
+        draw(args, path, &imm.points, &imm.triangles, &spine, root)?;
+    }
+    if args.json {
+        output::print_json(&TriangulationJson {
+            points: plain_points(&imm.points),
+            triangles: imm.triangles.clone(),
+            reversed: curve.reversed,
+            spine: spine.triangles.clone(),
+            pivot_vertex: spine.pivot_vertex,
+            root_triangle: root,
+        })?;
+    } else {
+        output::print(&format!(
+            "{}: {} points, {} triangles ({quality}), minimum angle {:.3}°, spine of {} triangles, pivot vertex {}, root triangle {root}",
+            args.curve.display(),
+            imm.points.len(),
+            imm.triangles.len(),
+            imm.min_angle().to_degrees(),
+            spine.triangles.len(),
+            spine.pivot_vertex,
+        ))?;
+    }
+    Ok(Outcome::Success)
+}
+
+fn draw(
+    args: &TriangulateArgs,
+    path: &std::path::Path,
+    points: &[Point],
+    triangles: &[[u32; 3]],
+    spine: &immerse::tree::Spine,
+    _root: usize,
+) -> anyhow::Result<()> {
+    let mut frame = render::Frame::from_triangles(plain_points(points), triangles.to_vec());
+    frame.spine = spine.triangles.iter().map(|&t| t as u32).collect();
+    let pivot = points[spine.pivot_vertex as usize];
+    frame.markers = vec![[pivot.x, pivot.y]];
+    let style = render::Style::DEFAULT
+        .with_size(args.size.0, args.size.1)
+        .with_wireframe(true)
+        .with_spine(true)
+        .with_markers(true);
+    let view = render::View::fit(std::slice::from_ref(&frame), &style);
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let bytes = match ext.as_deref() {
+        Some("png") => render::encode_png(&render::render(&frame, &view, &style, &[])?)?,
+        Some("svg") => render::svg_frame(&frame, &view, &style, &[])?.into_bytes(),
+        _ => anyhow::bail!(
+            "{}: unknown image type; name a .png or .svg file",
+            path.display()
+        ),
+    };
+    render::write_atomic(path, &bytes, args.force)?;
+    Ok(())
+}

@@ -1,0 +1,786 @@
+//! Morphing compatible triangulations by propagation along the dual tree
+//! (seed 004 §5; DESIGN.md §6).
+//!
+//! The dual tree is rooted at one triangle. The root's placement is
+//! interpolated (rotation angle, stretch from the polar decomposition of
+//! the source→target affine map, translation). Every other triangle is
+//! placed on its current base, which its parent has already placed; only
+//! third vertices move, so the shape is consistent at every t and equals
+//! the target at t = 1.
+//!
+//! Paths that lay triangles out from angles (`angle`, `hybrid`) are then
+//! normalised by a similarity so that √(total area) and the area centroid
+//! interpolate linearly and the root edge turns at a constant rate; this is
+//! applied at every t, so nothing jumps.
+
+use super::paths::{
+    RotateSlide, ThirdVertexPath, base_frame_angles, from_base_frame, to_base_frame,
+};
+use crate::geom::Point;
+use crate::tree::{DualTree, RootChoice, Rooted, root_triangle};
+use std::f64::consts::TAU;
+
+/// Default margin ε (radians) kept below 2π in every vertex fan by the
+/// hybrid path (DESIGN.md §6: about 0.05 rad).
+pub const DEFAULT_FAN_MARGIN: f64 = 0.05;
+
+/// Precomputed data for morphing one compatible pair.
+#[derive(Clone, Debug)]
+pub struct Compatible {
+    src: Vec<Point>,
+    dst: Vec<Point>,
+    triangles: Vec<[u32; 3]>,
+    rooted: Rooted,
+    /// Per triangle, the third vertex in base-frame coordinates.
+    local_src: Vec<Point>,
+    local_dst: Vec<Point>,
+    /// Per triangle, its rotate-slide plan.
+    plans: Vec<RotateSlide>,
+    /// Per triangle, angles at (base start, base end, third) in source and
+    /// target.
+    ang_src: Vec<[f64; 3]>,
+    ang_dst: Vec<[f64; 3]>,
+    root: RootMotion,
+    /// √(total area) and area centroid of source and target.
+    scale: [f64; 2],
+    centroid: [Point; 2],
+    /// Root-edge direction in the source and its turn to the target.
+    edge_angle: f64,
+    edge_turn: f64,
+    fan_margin: f64,
+}
+
+/// The interpolated placement of the root triangle: x(t) = L(t)(p − c_s) +
+/// c(t) with L(t) = R(tθ)((1 − t)I + tS), where R(θ)S is the polar
+/// decomposition of the affine map from the source root to the target.
+#[derive(Clone, Copy, Debug)]
+struct RootMotion {
+    theta: f64,
+    s: [[f64; 2]; 2],
+    c_src: Point,
+    c_dst: Point,
+}
+
+impl RootMotion {
+    fn new(src: [Point; 3], dst: [Point; 3]) -> RootMotion {
+        let c_src = (src[0] + src[1] + src[2]) / 3.0;
+        let c_dst = (dst[0] + dst[1] + dst[2]) / 3.0;
+        // L maps (src[1]-src[0], src[2]-src[0]) to the same in dst.
+        let (u1, u2) = (src[1] - src[0], src[2] - src[0]);
+        let (v1, v2) = (dst[1] - dst[0], dst[2] - dst[0]);
+        let det = u1.perp_dot(u2);
+        // L = V U^{-1}
+        let inv = [[u2.y / det, -u2.x / det], [-u1.y / det, u1.x / det]];
+        let l = [
+            [
+                v1.x * inv[0][0] + v2.x * inv[1][0],
+                v1.x * inv[0][1] + v2.x * inv[1][1],
+            ],
+            [
+                v1.y * inv[0][0] + v2.y * inv[1][0],
+                v1.y * inv[0][1] + v2.y * inv[1][1],
+            ],
+        ];
+        // Polar decomposition of a 2x2 matrix with positive determinant:
+        // the rotation angle is atan2(c - b, a + d).
+        let theta = (l[1][0] - l[0][1]).atan2(l[0][0] + l[1][1]);
+        let (c, s) = (theta.cos(), theta.sin());
+        // S = R^T L
+        let sm = [
+            [c * l[0][0] + s * l[1][0], c * l[0][1] + s * l[1][1]],
+            [-s * l[0][0] + c * l[1][0], -s * l[0][1] + c * l[1][1]],
+        ];
+        RootMotion {
+            theta,
+            s: sm,
+            c_src,
+            c_dst,
+        }
+    }
+
+    fn place(&self, p: Point, t: f64) -> Point {
+        let q = p - self.c_src;
+        let m = [
+            [(1.0 - t) + t * self.s[0][0], t * self.s[0][1]],
+            [t * self.s[1][0], (1.0 - t) + t * self.s[1][1]],
+        ];
+        let sq = Point::new(m[0][0] * q.x + m[0][1] * q.y, m[1][0] * q.x + m[1][1] * q.y);
+        let r = Point::from_angle(t * self.theta).rotate(sq);
+        r + self.c_src.lerp(self.c_dst, t)
+    }
+}
+
+/// Why a compatible morph could not be set up.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum CompatibleError {
+    /// The two point lists differ in length.
+    #[error("the curves have {0} and {1} points; compatible morphing needs equal counts")]
+    Counts(usize, usize),
+    /// The triangles are not a triangulation of the n-gon.
+    #[error(transparent)]
+    Tree(#[from] crate::tree::TreeError),
+    /// A triangle is not counter-clockwise on one of the curves.
+    #[error("triangle {triangle} is not counter-clockwise on the {which} curve")]
+    NotCcw {
+        /// Index of the triangle.
+        triangle: usize,
+        /// "source" or "target".
+        which: &'static str,
+    },
+}
+
+impl Compatible {
+    /// Prepares the morph from `src` to `dst`, which share the
+    /// triangulation `triangles` (corners in cyclic order, counter-clockwise
+    /// on both curves).
+    ///
+    /// # Errors
+    ///
+    /// [`CompatibleError`] when the counts differ, the triangles are not a
+    /// triangulation, or a triangle is not counter-clockwise.
+    pub fn new(
+        src: &[Point],
+        dst: &[Point],
+        triangles: &[[u32; 3]],
+        root: RootChoice,
+        fan_margin: f64,
+    ) -> Result<Compatible, CompatibleError> {
+        if src.len() != dst.len() {
+            return Err(CompatibleError::Counts(src.len(), dst.len()));
+        }
+        let tree = DualTree::new(src.len(), triangles)?;
+        let root_t = root_triangle(&tree, src, root);
+        let rooted = tree.rooted(root_t);
+        let m = triangles.len();
+        let mut local_src = vec![Point::ZERO; m];
+        let mut local_dst = vec![Point::ZERO; m];
+        let mut ang_src = vec![[0.0; 3]; m];
+        let mut ang_dst = vec![[0.0; 3]; m];
+        for t in 0..m {
+            let [x, y] = rooted.base[t].map(|v| v as usize);
+            let w = rooted.third[t] as usize;
+            local_src[t] = to_base_frame(src[x], src[y], src[w]);
+            local_dst[t] = to_base_frame(dst[x], dst[y], dst[w]);
+            ang_src[t] = base_frame_angles(local_src[t]).ok_or(CompatibleError::NotCcw {
+                triangle: t,
+                which: "source",
+            })?;
+            ang_dst[t] = base_frame_angles(local_dst[t]).ok_or(CompatibleError::NotCcw {
+                triangle: t,
+                which: "target",
+            })?;
+        }
+        // Rotate-slide pivots: base ends whose edge to the third vertex is a
+        // child's base.
+        let mut has_child_edge = vec![[false; 2]; m];
+        for u in 0..m {
+            if let Some(p) = rooted.parent[u] {
+                let w = rooted.third[p];
+                let [x, y] = rooted.base[p];
+                let e = rooted.base[u];
+                if e.contains(&w) && e.contains(&x) {
+                    has_child_edge[p][0] = true;
+                }
+                if e.contains(&w) && e.contains(&y) {
+                    has_child_edge[p][1] = true;
+                }
+            }
+        }
+        let plans = (0..m)
+            .map(|t| {
+                let mut pivots = Vec::with_capacity(2);
+                if has_child_edge[t][0] {
+                    pivots.push(Point::ZERO);
+                }
+                if has_child_edge[t][1] {
+                    pivots.push(Point::X);
+                }
+                RotateSlide::plan(local_src[t], local_dst[t], &pivots)
+            })
+            .collect();
+        let rt = triangles[root_t].map(|v| v as usize);
+        let root_motion = RootMotion::new(rt.map(|v| src[v]), rt.map(|v| dst[v]));
+        let (a_s, c_s) = area_and_centroid(src, triangles);
+        let (a_d, c_d) = area_and_centroid(dst, triangles);
+        let [x, y] = rooted.base[root_t].map(|v| v as usize);
+        let e_s = src[y] - src[x];
+        let e_d = dst[y] - dst[x];
+        let edge_angle = e_s.to_angle();
+        let edge_turn = e_s.perp_dot(e_d).atan2(e_s.dot(e_d));
+        Ok(Compatible {
+            src: src.to_vec(),
+            dst: dst.to_vec(),
+            triangles: triangles.to_vec(),
+            rooted,
+            local_src,
+            local_dst,
+            plans,
+            ang_src,
+            ang_dst,
+            root: root_motion,
+            scale: [a_s.sqrt(), a_d.sqrt()],
+            centroid: [c_s, c_d],
+            edge_angle,
+            edge_turn,
+            fan_margin,
+        })
+    }
+
+    /// The shared triangulation.
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        &self.triangles
+    }
+
+    /// The root triangle of the propagation.
+    pub fn root_triangle(&self) -> usize {
+        self.rooted.root
+    }
+
+    /// The source curve.
+    pub fn source(&self) -> &[Point] {
+        &self.src
+    }
+
+    /// The target curve.
+    pub fn target(&self) -> &[Point] {
+        &self.dst
+    }
+
+    /// Vertex positions at `t` along `path`. The ends are snapped: t ≤ 0
+    /// gives the source exactly and t ≥ 1 the target.
+    pub fn positions(&self, t: f64, path: ThirdVertexPath) -> Vec<Point> {
+        if t <= 0.0 {
+            return self.src.clone();
+        }
+        if t >= 1.0 {
+            return self.dst.clone();
+        }
+        match path {
+            ThirdVertexPath::Linear | ThirdVertexPath::RotateSlide => self.propagate(t, path),
+            ThirdVertexPath::Angle => {
+                let ang: Vec<[f64; 3]> = (0..self.triangles.len())
+                    .map(|i| lerp3(self.ang_src[i], self.ang_dst[i], t))
+                    .collect();
+                self.normalise(self.layout(&ang), t)
+            }
+            ThirdVertexPath::Hybrid => {
+                let ang = self.hybrid_angles(t);
+                self.normalise(self.layout(&ang), t)
+            }
+        }
+    }
+
+    fn third_local(&self, tri: usize, t: f64, path: ThirdVertexPath) -> Point {
+        match path {
+            ThirdVertexPath::RotateSlide => self.plans[tri].at(t),
+            _ => self.local_src[tri].lerp(self.local_dst[tri], t),
+        }
+    }
+
+    /// Direct propagation (linear and rotate-slide paths).
+    fn propagate(&self, t: f64, path: ThirdVertexPath) -> Vec<Point> {
+        let mut pos = vec![Point::ZERO; self.src.len()];
+        let root = self.rooted.root;
+        for v in self.triangles[root] {
+            pos[v as usize] = self.root.place(self.src[v as usize], t);
+        }
+        for &tri in &self.rooted.order {
+            if tri == root {
+                continue;
+            }
+            let [x, y] = self.rooted.base[tri].map(|v| v as usize);
+            let w = self.rooted.third[tri] as usize;
+            pos[w] = from_base_frame(pos[x], pos[y], self.third_local(tri, t, path));
+        }
+        pos
+    }
+
+    /// Angles of the rotate-slide frame blended toward the angle rule just
+    /// enough that every vertex fan stays at most 2π − min(ε, (2π − S_c)/2).
+    fn hybrid_angles(&self, t: f64) -> Vec<[f64; 3]> {
+        let m = self.triangles.len();
+        let ang_c: Vec<[f64; 3]> = (0..m)
+            .map(|i| lerp3(self.ang_src[i], self.ang_dst[i], t))
+            .collect();
+        // Root: angles of the interpolated affine placement.
+        let root = self.rooted.root;
+        let [x, y] = self.rooted.base[root].map(|v| v as usize);
+        let w = self.rooted.third[root] as usize;
+        let root_local = to_base_frame(
+            self.root.place(self.src[x], t),
+            self.root.place(self.src[y], t),
+            self.root.place(self.src[w], t),
+        );
+        let ang_b: Vec<[f64; 3]> = (0..m)
+            .map(|i| {
+                let c = if i == root {
+                    root_local
+                } else {
+                    self.plans[i].at(t)
+                };
+                base_frame_angles(c).unwrap_or(ang_c[i])
+            })
+            .collect();
+        let n = self.src.len();
+        let (mut s_b, mut s_c) = (vec![0.0; n], vec![0.0; n]);
+        for i in 0..m {
+            let corners = self.corners(i);
+            for k in 0..3 {
+                s_b[corners[k]] += ang_b[i][k];
+                s_c[corners[k]] += ang_c[i][k];
+            }
+        }
+        let mut lambda: f64 = 0.0;
+        for v in 0..n {
+            let cap = TAU - self.fan_margin.min((TAU - s_c[v]) / 2.0);
+            if s_b[v] > cap && s_b[v] > s_c[v] {
+                lambda = lambda.max((s_b[v] - cap) / (s_b[v] - s_c[v]));
+            }
+        }
+        let lambda = lambda.clamp(0.0, 1.0);
+        (0..m).map(|i| lerp3(ang_b[i], ang_c[i], lambda)).collect()
+    }
+
+    /// The vertices of triangle `i` in the order of its angle triple: base
+    /// start, base end, third.
+    fn corners(&self, i: usize) -> [usize; 3] {
+        let [x, y] = self.rooted.base[i].map(|v| v as usize);
+        [x, y, self.rooted.third[i] as usize]
+    }
+
+    /// Lays the triangles out from their angles, root edge from (0,0) to
+    /// (1,0); unique up to a similarity.
+    fn layout(&self, ang: &[[f64; 3]]) -> Vec<Point> {
+        let mut pos = vec![Point::ZERO; self.src.len()];
+        let root = self.rooted.root;
+        let [x, y, _] = self.corners(root);
+        pos[x] = Point::ZERO;
+        pos[y] = Point::X;
+        for &tri in &self.rooted.order {
+            let [x, y, w] = self.corners(tri);
+            let [ax, ay, aw] = ang[tri];
+            // Law of sines: |xw| / |xy| = sin(ay) / sin(aw).
+            let ratio = ay.sin() / aw.sin();
+            let e = pos[y] - pos[x];
+            pos[w] = pos[x] + Point::from_angle(ax).rotate(e) * ratio;
+        }
+        pos
+    }
+
+    /// The similarity that makes √area and the area centroid interpolate
+    /// linearly and turns the root edge at a constant rate.
+    fn normalise(&self, pos: Vec<Point>, t: f64) -> Vec<Point> {
+        let (area, centroid) = area_and_centroid(&pos, &self.triangles);
+        let want_scale = (1.0 - t) * self.scale[0] + t * self.scale[1];
+        let want_centroid = self.centroid[0].lerp(self.centroid[1], t);
+        let [x, y] = self.rooted.base[self.rooted.root].map(|v| v as usize);
+        let e = pos[y] - pos[x];
+        let turn = self.edge_angle + t * self.edge_turn - e.to_angle();
+        let k = want_scale / area.sqrt();
+        let rot = Point::from_angle(turn) * k;
+        pos.into_iter()
+            .map(|p| want_centroid + rot.rotate(p - centroid))
+            .collect()
+    }
+}
+
+fn lerp3(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {
+    [
+        a[0] + (b[0] - a[0]) * t,
+        a[1] + (b[1] - a[1]) * t,
+        a[2] + (b[2] - a[2]) * t,
+    ]
+}
+
+/// Total area of the triangles (overlaps counted with multiplicity) and
+/// their area centroid; coordinates are shifted to the first point to
+/// reduce cancellation.
+pub fn area_and_centroid(points: &[Point], triangles: &[[u32; 3]]) -> (f64, Point) {
+    let o = points.first().copied().unwrap_or(Point::ZERO);
+    let (mut area, mut moment) = (0.0, Point::ZERO);
+    for t in triangles {
+        let [a, b, c] = t.map(|v| points[v as usize] - o);
+        let ar = 0.5 * (b - a).perp_dot(c - a);
+        area += ar;
+        moment += (a + b + c) / 3.0 * ar;
+    }
+    if area == 0.0 {
+        return (0.0, o);
+    }
+    (area, o + moment / area)
+}
+
+/// Lays out a triangulated n-gon from its triangle angles, given per
+/// triangle in the order of its corners. The result is unique up to a
+/// similarity; here the first triangle's first edge runs from (0, 0) to
+/// (1, 0).
+///
+/// When the angles are positive, each triangle's sum to π and every
+/// vertex's fan sum is below 2π, the result is an immersion (DESIGN.md
+/// §6, the `angle` path).
+///
+/// # Errors
+///
+/// [`crate::tree::TreeError`] when `triangles` is not a triangulation of
+/// the n-gon.
+pub fn lay_out(
+    n: usize,
+    triangles: &[[u32; 3]],
+    angles: &[[f64; 3]],
+) -> Result<Vec<Point>, crate::tree::TreeError> {
+    let tree = DualTree::new(n, triangles)?;
+    let rooted = tree.rooted(0);
+    let mut pos = vec![Point::ZERO; n];
+    let [x0, y0] = rooted.base[0].map(|v| v as usize);
+    pos[x0] = Point::ZERO;
+    pos[y0] = Point::X;
+    for &tri in &rooted.order {
+        let [x, y] = rooted.base[tri];
+        let w = rooted.third[tri];
+        let corner = |v: u32| {
+            let k = triangles[tri].iter().position(|&c| c == v).unwrap_or(0);
+            angles[tri][k]
+        };
+        let (ax, ay, aw) = (corner(x), corner(y), corner(w));
+        let (x, y, w) = (x as usize, y as usize, w as usize);
+        let e = pos[y] - pos[x];
+        pos[w] = pos[x] + Point::from_angle(ax).rotate(e) * (ay.sin() / aw.sin());
+    }
+    Ok(pos)
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use crate::frames::Frame;
+    use std::f64::consts::PI;
+
+    pub(crate) struct Rng(pub(crate) u64);
+    impl Rng {
+        pub(crate) fn next(&mut self) -> f64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// A random triangulation of an n-gon (corners in cyclic order).
+    pub(crate) fn random_triangulation(n: u32, rng: &mut Rng) -> Vec<[u32; 3]> {
+        fn split(i: u32, j: u32, rng: &mut Rng, out: &mut Vec<[u32; 3]>) {
+            if j - i < 2 {
+                return;
+            }
+            let k = i + 1 + ((rng.next() * f64::from(j - i - 1)) as u32).min(j - i - 2);
+            out.push([i, k, j]);
+            split(i, k, rng, out);
+            split(k, j, rng, out);
+        }
+        let mut out = Vec::new();
+        split(0, n - 1, rng, &mut out);
+        out
+    }
+
+    /// Angles of the regular n-gon under `triangles` (a convex disk).
+    fn disk_angles(n: usize, triangles: &[[u32; 3]]) -> Vec<[f64; 3]> {
+        let pts: Vec<Point> = (0..n)
+            .map(|i| Point::from_angle(TAU * i as f64 / n as f64))
+            .collect();
+        triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|v| pts[v as usize]);
+                crate::geom::polygon::triangle_angles(a, b, c)
+            })
+            .collect()
+    }
+
+    /// A random immersed disk: random angles blended toward the disk's
+    /// just enough to keep every fan sum below 2π − margin.
+    pub(crate) fn random_immersed_disk(
+        n: usize,
+        triangles: &[[u32; 3]],
+        curl: f64,
+        rng: &mut Rng,
+    ) -> Vec<Point> {
+        let disk = disk_angles(n, triangles);
+        // Random factors, and a bias that widens the angles at the vertices
+        // of one side of the polygon so that the disk curls (and often
+        // overlaps itself) once the fans are capped below 2π.
+        let side = (rng.next() * n as f64) as usize;
+        let rnd: Vec<[f64; 3]> = disk
+            .iter()
+            .zip(triangles)
+            .map(|(d, t)| {
+                let f = [0, 1, 2].map(|k| {
+                    let on_side = (t[k] as usize + n - side) % n < n / 2;
+                    let bias = if on_side { 1.0 + curl } else { 1.0 };
+                    d[k] * bias * (1.0 + curl * (rng.next() - 0.3)).max(0.05)
+                });
+                let s = f[0] + f[1] + f[2];
+                f.map(|x| x * PI / s)
+            })
+            .collect();
+        let fan = |ang: &[[f64; 3]]| {
+            let mut s = vec![0.0; n];
+            for (t, a) in triangles.iter().zip(ang) {
+                for k in 0..3 {
+                    s[t[k] as usize] += a[k];
+                }
+            }
+            s
+        };
+        let (sr, sd) = (fan(&rnd), fan(&disk));
+        let cap = TAU - 0.1;
+        let mut lambda: f64 = 0.0;
+        for v in 0..n {
+            if sr[v] > cap {
+                lambda = lambda.max((sr[v] - cap) / (sr[v] - sd[v]));
+            }
+        }
+        let ang: Vec<[f64; 3]> = rnd
+            .iter()
+            .zip(&disk)
+            .map(|(r, d)| lerp3(*r, *d, lambda))
+            .collect();
+        lay_out(n, triangles, &ang).unwrap()
+    }
+
+    #[test]
+    fn guaranteed_paths_give_immersions_on_random_compatible_pairs() {
+        let mut rng = Rng(0x853c49e6748fea9b);
+        let mut self_intersecting = 0;
+        for case in 0..60 {
+            let n = 5 + (rng.next() * 40.0) as usize;
+            let tris = random_triangulation(n as u32, &mut rng);
+            let a = random_immersed_disk(n, &tris, 3.0, &mut rng);
+            let mut b = random_immersed_disk(n, &tris, 3.0, &mut rng);
+            // A large rotation, a scale and a shift of the target.
+            let rot = Point::from_angle(rng.next() * TAU) * (0.3 + 3.0 * rng.next());
+            let shift = Point::new(rng.next() * 10.0, rng.next() * 10.0);
+            for p in &mut b {
+                *p = rot.rotate(*p) + shift;
+            }
+            if !crate::geom::polygon::is_simple(&a) || !crate::geom::polygon::is_simple(&b) {
+                self_intersecting += 1;
+            }
+            for path in [ThirdVertexPath::Angle, ThirdVertexPath::Hybrid] {
+                let plan =
+                    Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
+                let (a0, _) = area_and_centroid(&a, &tris);
+                let (a1, _) = area_and_centroid(&b, &tris);
+                let (lo, hi) = (a0.min(a1), a0.max(a1));
+                let mut prev: Option<Vec<Point>> = None;
+                for i in 0..=200 {
+                    let t = i as f64 / 200.0;
+                    let f = Frame {
+                        t,
+                        points: plan.positions(t, path),
+                        triangles: tris.clone(),
+                    };
+                    assert!(
+                        f.is_immersion(),
+                        "case {case} {path} t={t}: {:?}",
+                        f.check()
+                    );
+                    let area = f.total_area();
+                    assert!(
+                        area >= lo * 0.99 && area <= hi * 1.01,
+                        "case {case} {path} t={t}: area {area} outside [{lo}, {hi}]"
+                    );
+                    prev = Some(f.points);
+                }
+                let last = prev.unwrap();
+                assert_eq!(last, b);
+                // Near the ends the layout agrees with the inputs.
+                let near0 = plan.positions(1e-9, path);
+                let near1 = plan.positions(1.0 - 1e-9, path);
+                let diag = bbox_diag(&a).max(bbox_diag(&b));
+                for i in 0..n {
+                    assert!(
+                        (near0[i] - a[i]).length() < 1e-6 * diag,
+                        "case {case} {path}"
+                    );
+                    assert!(
+                        (near1[i] - b[i]).length() < 1e-6 * diag,
+                        "case {case} {path}"
+                    );
+                }
+            }
+        }
+        let _ = self_intersecting;
+    }
+
+    #[test]
+    fn unguaranteed_paths_fall_back_when_they_fold() {
+        let mut rng = Rng(0xabcdef);
+        let times: Vec<f64> = (0..=100).map(|i| i as f64 / 100.0).collect();
+        let (mut cases, mut fell) = (0, [0, 0]);
+        for _ in 0..200 {
+            let n = 8 + (rng.next() * 40.0) as usize;
+            let tris = random_triangulation(n as u32, &mut rng);
+            let a = random_immersed_disk(n, &tris, 6.0, &mut rng);
+            let b = random_immersed_disk(n, &tris, 6.0, &mut rng);
+            cases += 1;
+            for (k, path) in [ThirdVertexPath::Linear, ThirdVertexPath::RotateSlide]
+                .into_iter()
+                .enumerate()
+            {
+                let m = crate::morph::morph_compatible(
+                    &a,
+                    &b,
+                    &tris,
+                    &times,
+                    &crate::morph::MorphOptions::DEFAULT.with_path(path),
+                )
+                .unwrap();
+                assert!(m.frames.iter().all(Frame::is_immersion));
+                if m.fallback {
+                    fell[k] += 1;
+                }
+            }
+        }
+        eprintln!(
+            "{cases} cases, fallbacks linear {} rotate-slide {}",
+            fell[0], fell[1]
+        );
+        assert!(fell[0] > 0 && fell[1] > 0, "{fell:?}");
+    }
+
+    /// A spiral strip of `m` stations curling `turns` times, with its
+    /// zigzag triangulation: outer edge forward (vertices 0..m), inner
+    /// edge backward (vertices m..2m).
+    pub(crate) fn spiral_strip(m: usize, turns: f64, width: f64) -> (Vec<Point>, Vec<[u32; 3]>) {
+        let station = |i: usize| {
+            let th = turns * TAU * i as f64 / (m - 1) as f64;
+            (th, 1.0 + 0.12 * th / TAU)
+        };
+        let mut pts = Vec::with_capacity(2 * m);
+        for i in 0..m {
+            let (th, r) = station(i);
+            pts.push(Point::from_angle(th) * (r + width / 2.0));
+        }
+        for i in (0..m).rev() {
+            let (th, r) = station(i);
+            pts.push(Point::from_angle(th) * (r - width / 2.0));
+        }
+        let n = 2 * m as u32;
+        let mut tris = Vec::new();
+        for i in 0..(m as u32 - 1) {
+            tris.push([i, i + 1, n - 1 - i]);
+            tris.push([i + 1, n - 2 - i, n - 1 - i]);
+        }
+        (pts, tris)
+    }
+
+    #[test]
+    fn spirals_unwind_and_wind_with_every_frame_an_immersion() {
+        let mut rng = Rng(0xfeed);
+        let mut fell_back = 0;
+        for case in 0..24 {
+            let m = 10 + (rng.next() * 40.0) as usize;
+            let (t1, t2) = (0.3 + 2.0 * rng.next(), 0.3 + 2.0 * rng.next());
+            let (a, tris) = spiral_strip(m, t1, 0.2);
+            let (mut b, _) = spiral_strip(m, t2, 0.2);
+            let rot = Point::from_angle(rng.next() * TAU) * (0.5 + 2.0 * rng.next());
+            for p in &mut b {
+                *p = rot.rotate(*p);
+            }
+            assert!(crate::immersion::check(&a, &tris).is_ok(), "case {case}");
+            assert!(crate::immersion::check(&b, &tris).is_ok(), "case {case}");
+            let times: Vec<f64> = (0..=200).map(|i| i as f64 / 200.0).collect();
+            for path in ThirdVertexPath::ALL {
+                let morph = crate::morph::morph_compatible(
+                    &a,
+                    &b,
+                    &tris,
+                    &times,
+                    &crate::morph::MorphOptions::DEFAULT.with_path(path),
+                )
+                .unwrap_or_else(|e| panic!("case {case} {path}: {e}"));
+                assert!(morph.frames.iter().all(Frame::is_immersion));
+                assert_eq!(morph.frames[0].points, a);
+                assert_eq!(morph.frames[200].points, b);
+                if morph.fallback {
+                    fell_back += 1;
+                    assert_eq!(morph.path, ThirdVertexPath::Hybrid);
+                    assert!(!path.is_guaranteed());
+                }
+            }
+        }
+        let _ = fell_back;
+    }
+
+    pub(crate) fn bbox_diag(p: &[Point]) -> f64 {
+        let lo = p
+            .iter()
+            .copied()
+            .fold(Point::splat(f64::INFINITY), Point::min);
+        let hi = p
+            .iter()
+            .copied()
+            .fold(Point::splat(f64::NEG_INFINITY), Point::max);
+        (hi - lo).length()
+    }
+
+    #[test]
+    fn consecutive_frames_move_continuously() {
+        let mut rng = Rng(0x1234567);
+        for _ in 0..20 {
+            let n = 6 + (rng.next() * 30.0) as usize;
+            let tris = random_triangulation(n as u32, &mut rng);
+            let a = random_immersed_disk(n, &tris, 3.0, &mut rng);
+            let b = random_immersed_disk(n, &tris, 3.0, &mut rng);
+            let plan =
+                Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
+            let diag = bbox_diag(&a).max(bbox_diag(&b));
+            // Halving the step roughly halves the largest move: no jumps.
+            let max_step = |steps: usize| {
+                let frames: Vec<Vec<Point>> = (0..=steps)
+                    .map(|i| plan.positions(i as f64 / steps as f64, ThirdVertexPath::Hybrid))
+                    .collect();
+                frames
+                    .windows(2)
+                    .map(|w| {
+                        w[0].iter()
+                            .zip(&w[1])
+                            .map(|(p, q)| (*p - *q).length())
+                            .fold(0.0, f64::max)
+                    })
+                    .fold(0.0, f64::max)
+            };
+            let (coarse, fine) = (max_step(200), max_step(400));
+            assert!(fine < 0.75 * coarse + 1e-9 * diag, "{coarse} -> {fine}");
+            assert!(coarse < 0.25 * diag);
+        }
+    }
+
+    #[test]
+    fn lay_out_reproduces_a_triangulated_polygon() {
+        let mut rng = Rng(99);
+        let n = 12;
+        let tris = random_triangulation(n as u32, &mut rng);
+        // A convex polygon: a circle with jittered vertex angles.
+        let pts: Vec<Point> = (0..n)
+            .map(|i| Point::from_angle(TAU * (i as f64 + 0.4 * rng.next()) / n as f64))
+            .collect();
+        let ang: Vec<[f64; 3]> = tris
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|v| pts[v as usize]);
+                crate::geom::polygon::triangle_angles(a, b, c)
+            })
+            .collect();
+        let out = lay_out(n, &tris, &ang).unwrap();
+        // Same shape up to similarity: compare after mapping edge 0 of the
+        // first triangle.
+        let [x, y, _] = tris[0].map(|v| v as usize);
+        let s = (pts[y] - pts[x]).length();
+        let r = Point::from_angle((pts[y] - pts[x]).to_angle()) * s;
+        for i in 0..n {
+            let q = pts[x] + r.rotate(out[i]);
+            assert!((q - pts[i]).length() < 1e-9, "{i}");
+        }
+    }
+}

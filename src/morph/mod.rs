@@ -1,0 +1,159 @@
+//! Morphing: compatible triangulations by propagation along the dual tree
+//! (DESIGN.md §6).
+
+mod compatible;
+mod curves;
+mod paths;
+
+pub use compatible::{Compatible, CompatibleError, DEFAULT_FAN_MARGIN, area_and_centroid};
+pub use curves::{
+    Counts, CurveMorphError, CurveMorphOptions, Prepared, Side, equal_counts, morph_curves,
+    prepare_compatible, triangulate_side,
+};
+pub use paths::ThirdVertexPath;
+
+use crate::frames::{Frame, Morph};
+use crate::tree::RootChoice;
+
+/// Options of a morph.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct MorphOptions {
+    /// The third-vertex path. Default: [`ThirdVertexPath::Hybrid`].
+    pub path: ThirdVertexPath,
+    /// The root of the propagation. Default: [`RootChoice::Disk`].
+    pub root: RootChoice,
+    /// Margin ε (radians) the hybrid path keeps below 2π in every vertex
+    /// fan. Default: [`DEFAULT_FAN_MARGIN`] (0.05).
+    pub fan_margin: f64,
+}
+
+impl MorphOptions {
+    /// The defaults.
+    pub const DEFAULT: MorphOptions = MorphOptions {
+        path: ThirdVertexPath::Hybrid,
+        root: RootChoice::Disk,
+        fan_margin: DEFAULT_FAN_MARGIN,
+    };
+
+    /// Sets the third-vertex path.
+    pub fn with_path(mut self, path: ThirdVertexPath) -> Self {
+        self.path = path;
+        self
+    }
+
+    /// Sets the root choice.
+    pub fn with_root(mut self, root: RootChoice) -> Self {
+        self.root = root;
+        self
+    }
+
+    /// Sets the fan margin ε.
+    pub fn with_fan_margin(mut self, eps: f64) -> Self {
+        self.fan_margin = eps;
+        self
+    }
+}
+
+impl Default for MorphOptions {
+    fn default() -> Self {
+        MorphOptions::DEFAULT
+    }
+}
+
+/// Why a morph failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum MorphError {
+    /// The pair could not be set up for a compatible morph.
+    #[error(transparent)]
+    Compatible(#[from] CompatibleError),
+    /// A frame of a guaranteed path failed the exact immersion check: a
+    /// bug in immerse.
+    #[error(
+        "frame at t = {t} of the {path} path is not an immersion ({defect}); this is a bug in immerse, please report it with the two curves"
+    )]
+    InvalidFrame {
+        /// The frame's parameter.
+        t: f64,
+        /// The path that produced it.
+        path: ThirdVertexPath,
+        /// What the checker found.
+        defect: String,
+    },
+}
+
+/// Morphs two curves that share the triangulation `triangles`, producing
+/// one frame per value in `times`.
+///
+/// Every frame is checked with the exact immersion test before it is
+/// returned. When the requested path is `linear` or `rotate-slide` and any
+/// frame fails, the whole morph is recomputed with `hybrid` and
+/// [`Morph::fallback`] is set. End frames (t = 0 and t = 1) are the inputs
+/// exactly.
+///
+/// # Errors
+///
+/// [`MorphError`] when the pair is not compatible under `triangles`, or
+/// (a bug) when a guaranteed path produced an invalid frame.
+pub fn morph_compatible(
+    src: &[crate::Point],
+    dst: &[crate::Point],
+    triangles: &[[u32; 3]],
+    times: &[f64],
+    options: &MorphOptions,
+) -> Result<Morph, MorphError> {
+    let plan = Compatible::new(src, dst, triangles, options.root, options.fan_margin)?;
+    morph_with(&plan, times, options.path)
+}
+
+/// As [`morph_compatible`], with the pair already prepared.
+///
+/// # Errors
+///
+/// As [`morph_compatible`].
+pub fn morph_with(
+    plan: &Compatible,
+    times: &[f64],
+    path: ThirdVertexPath,
+) -> Result<Morph, MorphError> {
+    let build = |path: ThirdVertexPath| -> Result<Vec<Frame>, (f64, String)> {
+        let frames: Vec<Frame> = times
+            .iter()
+            .map(|&t| Frame {
+                t,
+                points: plan.positions(t, path),
+                triangles: plan.triangles().to_vec(),
+            })
+            .collect();
+        for f in &frames {
+            if let Err(defect) = f.check() {
+                return Err((f.t, defect.to_string()));
+            }
+        }
+        Ok(frames)
+    };
+    match build(path) {
+        Ok(frames) => Ok(Morph {
+            path,
+            fallback: false,
+            frames,
+        }),
+        Err((t, defect)) if !path.is_guaranteed() => {
+            let _ = (t, defect);
+            match build(ThirdVertexPath::Hybrid) {
+                Ok(frames) => Ok(Morph {
+                    path: ThirdVertexPath::Hybrid,
+                    fallback: true,
+                    frames,
+                }),
+                Err((t, defect)) => Err(MorphError::InvalidFrame {
+                    t,
+                    path: ThirdVertexPath::Hybrid,
+                    defect,
+                }),
+            }
+        }
+        Err((t, defect)) => Err(MorphError::InvalidFrame { t, path, defect }),
+    }
+}

@@ -1,0 +1,300 @@
+//! Third-vertex paths of the propagation morph (DESIGN.md §6).
+//!
+//! Everything here works in a triangle's *base frame*: the base edge runs
+//! from (0, 0) to (1, 0) and the third vertex sits at (α, β) with β > 0 for
+//! a counter-clockwise triangle.
+
+use crate::geom::Point;
+use std::f64::consts::PI;
+
+/// How each triangle's third vertex travels from its source to its target
+/// position relative to its base.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum ThirdVertexPath {
+    /// Interpolate base-relative coordinates linearly. Not guaranteed: may
+    /// fold the shape on strong deformations (detected, then `hybrid` is
+    /// used instead).
+    Linear,
+    /// The seed paper's rotate-and-slide path (seed 004 Fig. 7): keep the
+    /// length of a propagation edge monotone. Not guaranteed either
+    /// (detected, then `hybrid` is used instead).
+    RotateSlide,
+    /// Interpolate every triangle's angles linearly and lay the triangles
+    /// out from them: an immersion for every t, but it distorts more.
+    Angle,
+    /// Rotate-slide angles blended toward the angle rule just enough to
+    /// keep every vertex fan below 2π: an immersion for every t with little
+    /// distortion.
+    #[default]
+    Hybrid,
+}
+
+impl ThirdVertexPath {
+    /// All paths, in the order of the CLI's possible values.
+    pub const ALL: [ThirdVertexPath; 4] = [
+        ThirdVertexPath::Hybrid,
+        ThirdVertexPath::Angle,
+        ThirdVertexPath::RotateSlide,
+        ThirdVertexPath::Linear,
+    ];
+
+    /// The CLI name: `hybrid`, `angle`, `rotate-slide` or `linear`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ThirdVertexPath::Linear => "linear",
+            ThirdVertexPath::RotateSlide => "rotate-slide",
+            ThirdVertexPath::Angle => "angle",
+            ThirdVertexPath::Hybrid => "hybrid",
+        }
+    }
+
+    /// True for the paths that guarantee an immersion for every t.
+    pub fn is_guaranteed(self) -> bool {
+        matches!(self, ThirdVertexPath::Angle | ThirdVertexPath::Hybrid)
+    }
+}
+
+impl std::fmt::Display for ThirdVertexPath {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl std::str::FromStr for ThirdVertexPath {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        ThirdVertexPath::ALL
+            .into_iter()
+            .find(|p| p.as_str() == s)
+            .ok_or_else(|| format!("unknown path '{s}'; use hybrid, angle, rotate-slide or linear"))
+    }
+}
+
+/// Base-frame coordinates of `w` relative to the base `x → y`.
+pub(crate) fn to_base_frame(x: Point, y: Point, w: Point) -> Point {
+    let e = y - x;
+    let d = w - x;
+    let l2 = e.length_squared();
+    Point::new(e.dot(d) / l2, e.perp_dot(d) / l2)
+}
+
+/// World position of base-frame coordinates `c` on the base `x → y`.
+pub(crate) fn from_base_frame(x: Point, y: Point, c: Point) -> Point {
+    let e = y - x;
+    x + e * c.x + e.perp() * c.y
+}
+
+/// The rotate-and-slide path of one third vertex in the base frame.
+///
+/// `pivot` is the base end whose propagation edge (pivot → third vertex)
+/// should change length monotonically. The linear path already does so
+/// unless the foot of the perpendicular from the pivot to the segment
+/// C1–C2 falls strictly inside it; then part of the path is replaced by an
+/// arc of radius min(l1, l2) about the pivot (seed 004 §5, Fig. 7): hold
+/// the length on the arc, then slide along a tangent (or slide first, then
+/// hold), so the length stays between l1 and l2 throughout.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum RotateSlide {
+    /// Straight from C1 to C2.
+    Line { c1: Point, c2: Point },
+    /// Arc about `pivot` of radius `r` from angle `a0` by `da`, joined to a
+    /// line segment; `arc_first` says which comes first.
+    ArcLine {
+        pivot: Point,
+        r: f64,
+        a0: f64,
+        da: f64,
+        line_from: Point,
+        line_to: Point,
+        arc_first: bool,
+    },
+}
+
+impl RotateSlide {
+    /// Plans the path for one triangle; `pivot` is `None` when the triangle
+    /// has no propagation edge whose length the linear path breaks.
+    pub(crate) fn plan(c1: Point, c2: Point, pivots: &[Point]) -> RotateSlide {
+        for &p in pivots {
+            let d = c2 - c1;
+            let len2 = d.length_squared();
+            if len2 == 0.0 {
+                break;
+            }
+            let s = (p - c1).dot(d) / len2;
+            if s <= 0.0 || s >= 1.0 {
+                continue;
+            }
+            let (l1, l2) = ((c1 - p).length(), (c2 - p).length());
+            // Near endpoint on the circle, far endpoint outside it.
+            let (near, far, arc_first) = if l1 <= l2 {
+                (c1, c2, true)
+            } else {
+                (c2, c1, false)
+            };
+            let r = l1.min(l2);
+            let q = far - p;
+            let dq = q.length();
+            if r <= 0.0 || dq <= r {
+                continue;
+            }
+            let phi = (r / dq).clamp(-1.0, 1.0).acos();
+            let base = q.to_angle();
+            let a_near = (near - p).to_angle();
+            // Two tangent points; take the one with the shorter total path.
+            let mut best: Option<(f64, f64, f64, Point)> = None;
+            for sgn in [-1.0, 1.0] {
+                let a_t = base + sgn * phi;
+                let tp = p + Point::from_angle(a_t) * r;
+                let da = wrap_pi(a_t - a_near);
+                let total = r * da.abs() + (far - tp).length();
+                if best.is_none_or(|b| total < b.0) {
+                    best = Some((total, a_near, da, tp));
+                }
+            }
+            let Some((_, a_near, da, tp)) = best else {
+                continue;
+            };
+            return if arc_first {
+                RotateSlide::ArcLine {
+                    pivot: p,
+                    r,
+                    a0: a_near,
+                    da,
+                    line_from: tp,
+                    line_to: far,
+                    arc_first: true,
+                }
+            } else {
+                // Slide from C1 (far) to the tangent point, then the arc
+                // from the tangent point to C2 (near).
+                RotateSlide::ArcLine {
+                    pivot: p,
+                    r,
+                    a0: a_near + da,
+                    da: -da,
+                    line_from: far,
+                    line_to: tp,
+                    arc_first: false,
+                }
+            };
+        }
+        RotateSlide::Line { c1, c2 }
+    }
+
+    /// The position at `t` ∈ [0, 1], moving at constant speed along the
+    /// path.
+    pub(crate) fn at(&self, t: f64) -> Point {
+        match *self {
+            RotateSlide::Line { c1, c2 } => c1.lerp(c2, t),
+            RotateSlide::ArcLine {
+                pivot,
+                r,
+                a0,
+                da,
+                line_from,
+                line_to,
+                arc_first,
+            } => {
+                let arc = r * da.abs();
+                let line = (line_to - line_from).length();
+                let total = arc + line;
+                if total <= 0.0 {
+                    return line_from;
+                }
+                let s = t * total;
+                let on_arc = |u: f64| pivot + Point::from_angle(a0 + da * u) * r;
+                if arc_first {
+                    if s <= arc && arc > 0.0 {
+                        on_arc(s / arc)
+                    } else {
+                        line_from.lerp(line_to, ((s - arc) / line.max(f64::MIN_POSITIVE)).min(1.0))
+                    }
+                } else if s <= line && line > 0.0 {
+                    line_from.lerp(line_to, s / line)
+                } else {
+                    on_arc(((s - line) / arc.max(f64::MIN_POSITIVE)).min(1.0))
+                }
+            }
+        }
+    }
+}
+
+fn wrap_pi(a: f64) -> f64 {
+    let mut a = a.rem_euclid(2.0 * PI);
+    if a > PI {
+        a -= 2.0 * PI;
+    }
+    a
+}
+
+/// Angles at the base start, base end and third vertex of the base-frame
+/// triangle (0,0), (1,0), c; `None` unless strictly counter-clockwise.
+pub(crate) fn base_frame_angles(c: Point) -> Option<[f64; 3]> {
+    if c.y <= 0.0 || !c.is_finite() {
+        return None;
+    }
+    let ax = c.y.atan2(c.x);
+    let ay = c.y.atan2(1.0 - c.x);
+    let aw = PI - ax - ay;
+    (ax > 0.0 && ay > 0.0 && aw > 0.0).then_some([ax, ay, aw])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn base_frame_round_trip() {
+        let (x, y, w) = (
+            Point::new(1.0, 2.0),
+            Point::new(4.0, 6.0),
+            Point::new(-1.0, 5.0),
+        );
+        let c = to_base_frame(x, y, w);
+        assert!((from_base_frame(x, y, c) - w).length() < 1e-12);
+        assert!(c.y > 0.0);
+    }
+
+    #[test]
+    fn rotate_slide_keeps_the_edge_length_monotone() {
+        // The linear path from C1 to C2 passes close to the pivot (1, 0):
+        // its distance dips; rotate-slide must keep it between l1 and l2.
+        let c1 = Point::new(0.2, 0.9);
+        let c2 = Point::new(2.6, 1.4);
+        let pivot = Point::new(1.0, 0.0);
+        let plan = RotateSlide::plan(c1, c2, &[pivot]);
+        assert!(matches!(plan, RotateSlide::ArcLine { .. }));
+        assert!((plan.at(0.0) - c1).length() < 1e-12);
+        assert!((plan.at(1.0) - c2).length() < 1e-12);
+        let mut last = (c1 - pivot).length();
+        for i in 1..=200 {
+            let l = (plan.at(i as f64 / 200.0) - pivot).length();
+            assert!(l >= last - 1e-12, "length fell at step {i}: {last} -> {l}");
+            last = l;
+        }
+        // Reversed: monotone decreasing.
+        let back = RotateSlide::plan(c2, c1, &[pivot]);
+        assert!((back.at(0.0) - c2).length() < 1e-12);
+        assert!((back.at(1.0) - c1).length() < 1e-12);
+        let mut last = (c2 - pivot).length();
+        for i in 1..=200 {
+            let l = (back.at(i as f64 / 200.0) - pivot).length();
+            assert!(l <= last + 1e-12);
+            last = l;
+        }
+    }
+
+    #[test]
+    fn monotone_linear_path_stays_linear() {
+        let plan = RotateSlide::plan(Point::new(0.5, 0.5), Point::new(0.5, 2.0), &[Point::ZERO]);
+        assert!(matches!(plan, RotateSlide::Line { .. }));
+    }
+
+    #[test]
+    fn path_names_round_trip() {
+        for p in ThirdVertexPath::ALL {
+            assert_eq!(p.as_str().parse::<ThirdVertexPath>(), Ok(p));
+        }
+        assert!("spline".parse::<ThirdVertexPath>().is_err());
+    }
+}

@@ -1,0 +1,356 @@
+//! The dual tree of an immersion triangulation, its spine, pivot and root.
+//!
+//! An immersion triangulation has no interior vertices, so its dual graph
+//! (one node per triangle, one edge per shared diagonal) is a tree
+//! (seed 004 §5, §6.1; DESIGN.md §4). This module is index-only: positions
+//! enter only in [`root_triangle`], which needs the curve's edge lengths to
+//! place the disk image.
+//!
+//! petgraph types stay inside this module; [`DualTree`] wraps them.
+
+mod spine;
+
+pub use spine::Spine;
+
+use crate::geom::Point;
+use petgraph::graph::{NodeIndex, UnGraph};
+use std::collections::{HashMap, VecDeque};
+
+/// Why a triangle list does not form the dual tree of a polygon
+/// triangulation.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum TreeError {
+    /// The triangle count is not n − 2.
+    #[error("{triangles} triangles for a {n}-gon; a triangulation has n - 2")]
+    Count {
+        /// Polygon vertices.
+        n: usize,
+        /// Triangles given.
+        triangles: usize,
+    },
+    /// A diagonal is shared by more than two triangles, or the dual graph
+    /// is not connected.
+    #[error("the triangles do not form a triangulated disk (dual graph is not a tree)")]
+    NotATree,
+}
+
+/// The dual tree of a triangulated n-gon.
+#[derive(Clone, Debug)]
+pub struct DualTree {
+    graph: UnGraph<u32, [u32; 2]>,
+    triangles: Vec<[u32; 3]>,
+    n: usize,
+}
+
+/// Which triangle roots the propagation of a morph.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum RootChoice {
+    /// The triangle closest to the centre of the disk image of the
+    /// triangulation (seed 004 §5).
+    #[default]
+    Disk,
+    /// The centre of the dual tree (smallest eccentricity in hops).
+    TreeCentre,
+}
+
+/// A dual tree rooted at one triangle: breadth-first order, parents and
+/// base edges.
+#[derive(Clone, Debug)]
+pub struct Rooted {
+    /// The root triangle.
+    pub root: usize,
+    /// Triangles in breadth-first order from the root (parents first).
+    pub order: Vec<usize>,
+    /// Parent of each triangle (`None` for the root).
+    pub parent: Vec<Option<usize>>,
+    /// For each non-root triangle, its base: the edge shared with its
+    /// parent, as `[x, y]` in the triangle's own counter-clockwise order;
+    /// the third vertex follows `y`. For the root, its first edge.
+    pub base: Vec<[u32; 2]>,
+    /// For each triangle, its third vertex (the corner not on the base).
+    pub third: Vec<u32>,
+}
+
+impl DualTree {
+    /// Builds the dual tree of `triangles`, a triangulation of the abstract
+    /// `n`-gon (each triangle's corners in cyclic polygon order).
+    ///
+    /// # Errors
+    ///
+    /// [`TreeError`] when the count is wrong or the dual graph is not a
+    /// tree.
+    pub fn new(n: usize, triangles: &[[u32; 3]]) -> Result<DualTree, TreeError> {
+        if n < 3 || triangles.len() != n - 2 {
+            return Err(TreeError::Count {
+                n,
+                triangles: triangles.len(),
+            });
+        }
+        let mut graph = UnGraph::with_capacity(triangles.len(), triangles.len());
+        for t in 0..triangles.len() {
+            graph.add_node(t as u32);
+        }
+        let mut owner: HashMap<(u32, u32), usize> = HashMap::with_capacity(3 * n);
+        let mut boundary_seen = vec![false; n];
+        for (t, tri) in triangles.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                if a as usize >= n || b as usize >= n {
+                    return Err(TreeError::NotATree);
+                }
+                let key = (a.min(b), a.max(b));
+                let boundary = (key.1 - key.0) as usize == 1 || (key.1 - key.0) as usize == n - 1;
+                if boundary {
+                    // Boundary edge (i, i + 1) is identified by i.
+                    let i = if key.1 - key.0 == 1 { key.0 } else { key.1 } as usize;
+                    if std::mem::replace(&mut boundary_seen[i], true) {
+                        return Err(TreeError::NotATree);
+                    }
+                    continue;
+                }
+                match owner.remove(&key) {
+                    Some(other) => {
+                        graph.add_edge(NodeIndex::new(other), NodeIndex::new(t), [key.0, key.1]);
+                    }
+                    None => {
+                        owner.insert(key, t);
+                    }
+                }
+            }
+        }
+        if !owner.is_empty()
+            || graph.edge_count() != triangles.len() - 1
+            || boundary_seen.contains(&false)
+        {
+            return Err(TreeError::NotATree);
+        }
+        let tree = DualTree {
+            graph,
+            triangles: triangles.to_vec(),
+            n,
+        };
+        if tree.rooted(0).order.len() != triangles.len() {
+            return Err(TreeError::NotATree);
+        }
+        Ok(tree)
+    }
+
+    /// Number of polygon vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.n
+    }
+
+    /// The triangles (nodes of the tree).
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        &self.triangles
+    }
+
+    /// Number of neighbours of triangle `t` (1 leaf, 2 path, 3 internal).
+    pub fn degree(&self, t: usize) -> usize {
+        self.graph.neighbors(NodeIndex::new(t)).count()
+    }
+
+    /// Neighbouring triangles of `t` with the shared diagonal.
+    pub fn neighbours(&self, t: usize) -> Vec<(usize, [u32; 2])> {
+        self.graph
+            .edges(NodeIndex::new(t))
+            .map(|e| {
+                use petgraph::visit::EdgeRef;
+                let other = if e.source().index() == t {
+                    e.target().index()
+                } else {
+                    e.source().index()
+                };
+                (other, *e.weight())
+            })
+            .collect()
+    }
+
+    /// Leaf triangles (one neighbour; with a single triangle, that one).
+    pub fn leaves(&self) -> Vec<usize> {
+        (0..self.triangles.len())
+            .filter(|&t| self.degree(t) <= 1)
+            .collect()
+    }
+
+    /// Hop distances from `from` to every triangle.
+    pub fn distances(&self, from: usize) -> Vec<usize> {
+        let mut dist = vec![usize::MAX; self.triangles.len()];
+        let mut queue = VecDeque::from([from]);
+        dist[from] = 0;
+        while let Some(t) = queue.pop_front() {
+            for (u, _) in self.neighbours(t) {
+                if dist[u] == usize::MAX {
+                    dist[u] = dist[t] + 1;
+                    queue.push_back(u);
+                }
+            }
+        }
+        dist
+    }
+
+    /// The centre of the tree: the middle of a longest path (ties to the
+    /// smaller index).
+    pub fn centre(&self) -> usize {
+        let d0 = self.distances(0);
+        let a = argmax(&d0);
+        let da = self.distances(a);
+        let b = argmax(&da);
+        let db = self.distances(b);
+        let len = da[b];
+        (0..self.triangles.len())
+            .filter(|&t| da[t] + db[t] == len)
+            .min_by_key(|&t| (da[t].max(db[t]), t))
+            .unwrap_or(0)
+    }
+
+    /// Roots the tree at triangle `root`.
+    pub fn rooted(&self, root: usize) -> Rooted {
+        let m = self.triangles.len();
+        let mut parent = vec![None; m];
+        let mut seen = vec![false; m];
+        let mut order = Vec::with_capacity(m);
+        let mut base = vec![[0u32; 2]; m];
+        let mut third = vec![0u32; m];
+        let r = self.triangles[root];
+        base[root] = [r[0], r[1]];
+        third[root] = r[2];
+        seen[root] = true;
+        let mut queue = VecDeque::from([root]);
+        while let Some(t) = queue.pop_front() {
+            order.push(t);
+            for (u, [a, b]) in self.neighbours(t) {
+                if seen[u] {
+                    continue;
+                }
+                seen[u] = true;
+                parent[u] = Some(t);
+                let tri = self.triangles[u];
+                // The base in u's counter-clockwise order: the corner pair
+                // (tri[k], tri[k+1]) that is {a, b}.
+                for k in 0..3 {
+                    let (x, y) = (tri[k], tri[(k + 1) % 3]);
+                    if (x == a && y == b) || (x == b && y == a) {
+                        base[u] = [x, y];
+                        third[u] = tri[(k + 2) % 3];
+                    }
+                }
+                queue.push_back(u);
+            }
+        }
+        Rooted {
+            root,
+            order,
+            parent,
+            base,
+            third,
+        }
+    }
+
+    /// The spine and pivot (seed 004 §6.1). `points` (the curve) break the
+    /// choice between the two spine ends: the end triangle with the larger
+    /// area becomes the pivot triangle.
+    pub fn spine(&self, points: &[Point]) -> Spine {
+        spine::spine(self, points)
+    }
+}
+
+fn argmax(v: &[usize]) -> usize {
+    let mut best = 0;
+    for (i, &x) in v.iter().enumerate() {
+        if x > v[best] {
+            best = i;
+        }
+    }
+    best
+}
+
+/// The root triangle for propagation.
+///
+/// [`RootChoice::Disk`]: place the vertices on a circle at angles
+/// proportional to the curve's cumulative edge length (the disk image of
+/// the triangulation) and take the triangle whose centroid is closest to
+/// the centre. [`RootChoice::TreeCentre`]: [`DualTree::centre`].
+pub fn root_triangle(tree: &DualTree, points: &[Point], choice: RootChoice) -> usize {
+    match choice {
+        RootChoice::TreeCentre => tree.centre(),
+        RootChoice::Disk => {
+            let disk = disk_positions(points);
+            let mut best = (f64::INFINITY, 0);
+            for (t, tri) in tree.triangles().iter().enumerate() {
+                let c =
+                    (disk[tri[0] as usize] + disk[tri[1] as usize] + disk[tri[2] as usize]) / 3.0;
+                let d = c.length_squared();
+                if d < best.0 {
+                    best = (d, t);
+                }
+            }
+            best.1
+        }
+    }
+}
+
+/// Unit-circle positions of the vertices, spaced in proportion to the
+/// curve's edge lengths (vertex 0 at angle 0, counter-clockwise).
+pub fn disk_positions(points: &[Point]) -> Vec<Point> {
+    let n = points.len();
+    let lengths: Vec<f64> = (0..n)
+        .map(|i| (points[(i + 1) % n] - points[i]).length())
+        .collect();
+    let total: f64 = lengths.iter().sum();
+    let mut acc = 0.0;
+    let mut out = Vec::with_capacity(n);
+    for len in lengths {
+        let a = std::f64::consts::TAU * acc / total;
+        out.push(Point::new(a.cos(), a.sin()));
+        acc += len;
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Fan triangulation of an n-gon from vertex 0.
+    pub(crate) fn fan(n: u32) -> Vec<[u32; 3]> {
+        (1..n - 1).map(|i| [0, i, i + 1]).collect()
+    }
+
+    #[test]
+    fn fan_is_a_path() {
+        let t = DualTree::new(6, &fan(6)).unwrap();
+        assert_eq!(t.leaves(), vec![0, 3]);
+        assert_eq!(
+            (0..4).map(|i| t.degree(i)).collect::<Vec<_>>(),
+            vec![1, 2, 2, 1]
+        );
+        let r = t.rooted(1);
+        assert_eq!(r.order.len(), 4);
+        assert_eq!(r.parent[0], Some(1));
+        // Triangle [0,1,2] meets [0,2,3] along 0-2; in its own CCW order the
+        // base is (2, 0) and the third vertex 1.
+        assert_eq!(r.base[0], [2, 0]);
+        assert_eq!(r.third[0], 1);
+    }
+
+    #[test]
+    fn rejects_non_trees() {
+        assert!(matches!(
+            DualTree::new(5, &fan(4)),
+            Err(TreeError::Count { .. })
+        ));
+        // Two copies of the same triangle in a 4-gon.
+        assert_eq!(
+            DualTree::new(4, &[[0, 1, 2], [0, 1, 2]]).unwrap_err(),
+            TreeError::NotATree
+        );
+    }
+
+    #[test]
+    fn centre_of_a_path() {
+        let t = DualTree::new(9, &fan(9)).unwrap();
+        assert_eq!(t.centre(), 3);
+    }
+}

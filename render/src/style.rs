@@ -263,11 +263,23 @@ impl Style {
         1.0 - (1.0 - a).powf(depth.max(0.0))
     }
 
+    /// The largest image, in pixels, that is rendered: 8192 × 8192. Each
+    /// frame needs two RGBA buffers of this size (512 MiB at the limit), and
+    /// allocating more could abort the process instead of failing.
+    pub const MAX_PIXELS: u64 = 1 << 26;
+
     pub(crate) fn check_size(&self) -> Result<(), RenderError> {
         if self.width == 0 || self.height == 0 {
             return Err(RenderError::EmptyImage {
                 width: self.width,
                 height: self.height,
+            });
+        }
+        if u64::from(self.width) * u64::from(self.height) > Style::MAX_PIXELS {
+            return Err(RenderError::ImageTooLarge {
+                width: self.width,
+                height: self.height,
+                reason: "at most 67108864 pixels (8192x8192) are rendered",
             });
         }
         Ok(())

@@ -7,7 +7,7 @@
 //!
 //! With `OUT_DIR` the last run's PNG frames and GIF are kept there.
 
-#[path = "../benches/synth.rs"]
+#[path = "../benches/common/synth.rs"]
 mod synth;
 
 use std::time::{Duration, Instant};

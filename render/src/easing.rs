@@ -122,7 +122,7 @@ fn solve(x1: f64, x2: f64, x: f64) -> f64 {
         } else {
             0.5 * (lo + hi)
         };
-        if hi - lo < f64::EPSILON {
+        if hi <= lo + f64::EPSILON {
             break;
         }
     }

@@ -91,7 +91,7 @@ pub fn render(
         };
         if let Some(path) = path {
             paint.set_color(style.onion_color.to_skia());
-            pixmap.stroke_path(&path, &paint, &round(1.5), id, None);
+            pixmap.stroke_path(&path, &paint, &round(1.0), id, None);
         }
     }
 
@@ -214,7 +214,7 @@ fn over(src: PremultipliedColorU8, dst: PremultipliedColorU8) -> PremultipliedCo
 }
 
 fn div255(v: u16) -> u8 {
-    ((u32::from(v) + 128) * 257 >> 16) as u8
+    (((u32::from(v) + 128) * 257) >> 16) as u8
 }
 
 /// A polyline (closed if `close`) through `idx`, skipping non-finite points.

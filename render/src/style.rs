@@ -25,7 +25,7 @@ impl Rgba {
     }
 
     /// A colour with alpha.
-    pub const fn rgba(r: u8, g: u8, b: u8, a: u8) -> Rgba {
+    pub const fn new(r: u8, g: u8, b: u8, a: u8) -> Rgba {
         Rgba { r, g, b, a }
     }
 
@@ -71,7 +71,7 @@ impl FromStr for Rgba {
         }
         let byte = |i: usize| u8::from_str_radix(&hex[i..i + 2], 16).map_err(|_| bad());
         let a = if hex.len() == 8 { byte(6)? } else { 255 };
-        Ok(Rgba::rgba(byte(0)?, byte(2)?, byte(4)?, a))
+        Ok(Rgba::new(byte(0)?, byte(2)?, byte(4)?, a))
     }
 }
 
@@ -149,7 +149,7 @@ impl Style {
         outline: Rgba::rgb(0x1d, 0x2b, 0x3a),
         outline_width: 2.0,
         wireframe: true,
-        wireframe_color: Rgba::rgba(0x1d, 0x2b, 0x3a, 90),
+        wireframe_color: Rgba::new(0x1d, 0x2b, 0x3a, 90),
         wireframe_width: 0.75,
         spine: true,
         spine_color: Rgba::rgb(0xd1, 0x49, 0x5b),
@@ -157,7 +157,7 @@ impl Style {
         marker_color: Rgba::rgb(0xed, 0xae, 0x49),
         marker_radius: 4.0,
         onion_skin: true,
-        onion_color: Rgba::rgba(0x1d, 0x2b, 0x3a, 60),
+        onion_color: Rgba::new(0x1d, 0x2b, 0x3a, 60),
         anti_alias: true,
     };
 

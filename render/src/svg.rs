@@ -97,10 +97,10 @@ fn stroke_attrs(out: &mut String, c: Rgba, width: f32) {
 
 fn header(out: &mut String, style: &Style) {
     let (w, h) = (style.width, style.height);
-    let _ = write!(
+    let _ = writeln!(
         out,
         "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" \
-         width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n"
+         width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">"
     );
     out.push_str("<rect width=\"100%\" height=\"100%\"");
     color_attr(out, "fill", style.background);
@@ -122,7 +122,7 @@ fn onion_paths(out: &mut String, onion: &[&Frame], view: &View, style: &Style) {
         };
         if !d.is_empty() {
             let _ = write!(out, "<path d=\"{d}\"");
-            stroke_attrs(out, style.onion_color, 1.5);
+            stroke_attrs(out, style.onion_color, 1.0);
             out.push_str("/>\n");
         }
     }
@@ -177,9 +177,9 @@ pub fn svg_frame(
     let mut out = String::with_capacity(128 + 64 * frame.triangles.len());
     header(&mut out, style);
 
-    let _ = write!(
+    let _ = writeln!(
         out,
-        "<g fill=\"{}\" fill-opacity=\"{:.3}\" stroke=\"none\">\n",
+        "<g fill=\"{}\" fill-opacity=\"{:.3}\" stroke=\"none\">",
         style.fill.hex_rgb(),
         layer_alpha(style)
     );
@@ -395,10 +395,10 @@ mod tests {
     #[test]
     fn numbers_are_short() {
         let mut s = String::new();
-        for v in [1.0, 2.5, -0.001, 3.14159] {
+        for v in [1.0, 2.5, -0.001, 1.23456] {
             num(&mut s, v);
             s.push(' ');
         }
-        assert_eq!(s, "1 2.5 0 3.14 ");
+        assert_eq!(s, "1 2.5 0 1.23 ");
     }
 }

@@ -84,18 +84,18 @@ impl View {
     }
 
     /// Pixel position of world point `p` (x right, y down).
-    pub fn to_pixel(&self, p: [f64; 2]) -> [f64; 2] {
+    pub fn to_pixel(self, p: [f64; 2]) -> [f64; 2] {
         [self.tx + self.scale * p[0], self.ty - self.scale * p[1]]
     }
 
     /// Pixels per world unit.
-    pub fn scale(&self) -> f64 {
+    pub fn scale(self) -> f64 {
         self.scale
     }
 
     /// Pixel position of `p` as `f32`, or `None` when it is not finite or so
     /// far outside the image that the rasteriser should not see it.
-    pub(crate) fn to_pixel_f32(&self, p: [f64; 2]) -> Option<(f32, f32)> {
+    pub(crate) fn to_pixel_f32(self, p: [f64; 2]) -> Option<(f32, f32)> {
         /// Beyond this many pixels f32 coordinates lose sub-pixel precision;
         /// such points are far off-screen anyway.
         const LIMIT: f64 = 1.0e7;

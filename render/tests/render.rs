@@ -212,7 +212,7 @@ fn png_sequence_decodes_with_the_right_size() {
 #[test]
 fn encoded_png_keeps_transparency() {
     let frame = overlapping();
-    let style = plain_style().with_background(Rgba::rgba(0, 0, 0, 0));
+    let style = plain_style().with_background(Rgba::new(0, 0, 0, 0));
     let view = View::fit(std::slice::from_ref(&frame), &style);
     let bytes = encode_png(&render(&frame, &view, &style, &[]).unwrap()).unwrap();
     let reader = png::Decoder::new(std::io::Cursor::new(bytes))

@@ -1,1 +1,73 @@
-//! Rasterise and write plain 2-D geometry.
+//! Rasterise and write plain 2-D geometry: the pictures of *immerse*.
+//!
+//! This crate draws closed curves that may cross themselves, filled as
+//! *immersed disks*: the fill may overlap itself, and a spot covered k times
+//! is shaded k layers deep. It knows nothing of how the geometry was made;
+//! the input is a [`Frame`] of points, counter-clockwise triangles (which
+//! may overlap), an outline loop, optional polygon faces, a spine and
+//! markers.
+//!
+//! The pipeline, for one animation:
+//!
+//! ```text
+//! &[Frame] ──> View::fit (one world→pixel mapping for all frames, y flipped)
+//!          ──> render (tiny-skia; depth-shaded fill, wireframe, outline, onion skin)
+//!          ──> encode_png / write_png_sequence / write_gif (rayon in parallel)
+//!          ──> svg_frame / write_svg_sequence / write_animated_svg (SMIL)
+//! ```
+//!
+//! Writers never overwrite silently: [`prepare_output_dir`] and
+//! [`write_atomic`] refuse existing output unless `force` is given, and
+//! every file appears by an atomic rename. [`Easing`] and [`frame_times`]
+//! turn a frame count into CSS-style eased animation times.
+//!
+//! The crate has no features. It re-exports [`tiny_skia`], whose
+//! [`Pixmap`](tiny_skia::Pixmap) [`render`] returns.
+//!
+//! # Examples
+//!
+//! Two triangles overlap; the doubly covered spot is darker:
+//!
+//! ```
+//! use immerse_render::{render, Frame, Style, View};
+//!
+//! let frame = Frame {
+//!     points: vec![[0.0, 0.0], [4.0, 0.0], [0.0, 4.0], [1.0, 1.0], [5.0, 1.0], [1.0, 5.0]],
+//!     triangles: vec![[0, 1, 2], [3, 4, 5]],
+//!     ..Frame::default()
+//! };
+//! let style = Style::DEFAULT.with_size(100, 100).with_wireframe(false);
+//! let view = View::fit(std::slice::from_ref(&frame), &style);
+//! let pixmap = render(&frame, &view, &style, &[])?;
+//!
+//! let red_at = |p: [f64; 2]| {
+//!     let [x, y] = view.to_pixel(p);
+//!     pixmap.pixel(x as u32, y as u32).unwrap().red()
+//! };
+//! let (once, twice) = (red_at([0.5, 3.0]), red_at([1.5, 1.5]));
+//! assert!(twice < once);
+//! # Ok::<(), immerse_render::RenderError>(())
+//! ```
+#![forbid(unsafe_code)]
+#![deny(rustdoc::broken_intra_doc_links)]
+
+mod easing;
+mod error;
+mod frame;
+mod output;
+mod raster;
+mod style;
+mod svg;
+mod view;
+
+pub use easing::{Easing, frame_times};
+pub use error::RenderError;
+pub use frame::Frame;
+pub use output::{
+    Loop, Output, frame_file_name, prepare_output_dir, write_atomic, write_gif, write_png_sequence,
+};
+pub use raster::{encode_png, render};
+pub use style::{Rgba, Style};
+pub use svg::{animated_svg, svg_frame, write_animated_svg, write_svg_sequence};
+pub use tiny_skia;
+pub use view::View;

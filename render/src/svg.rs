@@ -1,0 +1,404 @@
+//! SVG output: one document per frame, or one animated document (SMIL).
+//!
+//! Coordinates are written in pixels through the shared [`View`], rounded to
+//! 1/100 pixel.
+//!
+//! *Per-frame SVG* draws each triangle (and face) as its own path with fill
+//! opacity [`Style::layer_alpha`], so a spot covered k times is composited k
+//! times and gets opacity `1 - (1 - a)^k`, the same shading as the PNG
+//! output (renderers may show faint seams along shared edges).
+//!
+//! *Animated SVG* animates the outline path with one
+//! `<animate attributeName="d">`. One path cannot show coverage depth
+//! directly: with `nonzero` a doubly covered spot looks like a singly
+//! covered one, with `evenodd` it looks like a hole. So the animated path
+//! (defined once and reused with `<use>`) is filled twice, translucently:
+//! once with `nonzero` (every covered spot) and once more through a mask
+//! that keeps only the spots of even winding number (`nonzero` minus
+//! `evenodd`). The overlap of an immersed disk, winding number 2, is
+//! therefore darker, matching the raster shading for depths 1 and 2
+//! (depth 3 shades like 1).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use crate::output::{check_fps, onion, write_sequence};
+use crate::{Frame, Loop, Output, RenderError, Rgba, Style, View, write_atomic};
+
+/// A number with at most two decimals and no trailing zeros.
+fn num(out: &mut String, v: f64) {
+    let r = (v * 100.0).round() / 100.0;
+    // Avoid "-0".
+    let r = if r == 0.0 { 0.0 } else { r };
+    let _ = write!(out, "{r}");
+}
+
+/// Pixel coordinates of every point, `None` for non-finite ones.
+fn pixel_points(frame: &Frame, view: &View) -> Vec<Option<[f64; 2]>> {
+    frame
+        .points
+        .iter()
+        .map(|&p| {
+            let q = view.to_pixel(p);
+            (q[0].is_finite() && q[1].is_finite()).then_some(q)
+        })
+        .collect()
+}
+
+/// Path data of a polyline (closed if `close`) through `idx`, skipping
+/// non-finite points; empty if fewer than two remain.
+fn path_data(idx: &[u32], pts: &[Option<[f64; 2]>], close: bool) -> String {
+    let corners: Vec<[f64; 2]> = idx
+        .iter()
+        .filter_map(|&i| pts.get(i as usize).copied().flatten())
+        .collect();
+    let mut d = String::new();
+    if corners.len() < 2 {
+        return d;
+    }
+    for (k, p) in corners.iter().enumerate() {
+        d.push(if k == 0 { 'M' } else { 'L' });
+        num(&mut d, p[0]);
+        d.push(' ');
+        num(&mut d, p[1]);
+    }
+    if close {
+        d.push('Z');
+    }
+    d
+}
+
+/// Path data of a closed loop; empty if any corner is non-finite.
+fn polygon_data(idx: &[u32], pts: &[Option<[f64; 2]>]) -> String {
+    if idx
+        .iter()
+        .any(|&i| pts.get(i as usize).copied().flatten().is_none())
+    {
+        return String::new();
+    }
+    path_data(idx, pts, true)
+}
+
+fn color_attr(out: &mut String, attr: &str, c: Rgba) {
+    let _ = write!(out, " {attr}=\"{}\"", c.hex_rgb());
+    if c.a != 255 {
+        let _ = write!(out, " {attr}-opacity=\"{:.3}\"", c.opacity());
+    }
+}
+
+fn stroke_attrs(out: &mut String, c: Rgba, width: f32) {
+    out.push_str(" fill=\"none\"");
+    color_attr(out, "stroke", c);
+    let _ = write!(
+        out,
+        " stroke-width=\"{width}\" stroke-linejoin=\"round\" stroke-linecap=\"round\""
+    );
+}
+
+fn header(out: &mut String, style: &Style) {
+    let (w, h) = (style.width, style.height);
+    let _ = writeln!(
+        out,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" \
+         width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">"
+    );
+    out.push_str("<rect width=\"100%\" height=\"100%\"");
+    color_attr(out, "fill", style.background);
+    out.push_str("/>\n");
+}
+
+fn layer_alpha(style: &Style) -> f64 {
+    style.depth_opacity(1.0)
+}
+
+/// Ghost outlines (or edges) of the onion frames.
+fn onion_paths(out: &mut String, onion: &[&Frame], view: &View, style: &Style) {
+    for ghost in onion {
+        let pts = pixel_points(ghost, view);
+        let d = if ghost.outline.is_empty() {
+            edges_data(ghost, &pts)
+        } else {
+            path_data(&ghost.outline, &pts, true)
+        };
+        if !d.is_empty() {
+            let _ = write!(out, "<path d=\"{d}\"");
+            stroke_attrs(out, style.onion_color, 1.0);
+            out.push_str("/>\n");
+        }
+    }
+}
+
+fn edges_data(frame: &Frame, pts: &[Option<[f64; 2]>]) -> String {
+    let mut d = String::new();
+    for t in &frame.triangles {
+        d.push_str(&polygon_data(t, pts));
+    }
+    for f in &frame.faces {
+        d.push_str(&polygon_data(f, pts));
+    }
+    d
+}
+
+/// One frame as a standalone SVG document, drawn in the same layers as
+/// [`render`](crate::render): background, fill (one translucent path per
+/// triangle or face, so overlap shows as depth), onion ghosts, wireframe,
+/// outline, spine, markers. Primitives touching a non-finite point are
+/// skipped.
+///
+/// # Examples
+///
+/// ```
+/// use immerse_render::{svg_frame, Frame, Style, View};
+///
+/// let frame = Frame::from_triangles(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], vec![[0, 1, 2]]);
+/// let style = Style::DEFAULT;
+/// let view = View::fit(std::slice::from_ref(&frame), &style);
+/// let svg = svg_frame(&frame, &view, &style, &[])?;
+/// assert!(svg.starts_with("<svg"));
+/// # Ok::<(), immerse_render::RenderError>(())
+/// ```
+///
+/// # Errors
+///
+/// [`RenderError::EmptyImage`] for a zero size, [`RenderError::BadIndex`]
+/// for an out-of-range index.
+pub fn svg_frame(
+    frame: &Frame,
+    view: &View,
+    style: &Style,
+    onion: &[&Frame],
+) -> Result<String, RenderError> {
+    style.check_size()?;
+    frame.check_indices()?;
+    for ghost in onion {
+        ghost.check_indices()?;
+    }
+    let pts = pixel_points(frame, view);
+    let mut out = String::with_capacity(128 + 64 * frame.triangles.len());
+    header(&mut out, style);
+
+    let _ = writeln!(
+        out,
+        "<g fill=\"{}\" fill-opacity=\"{:.3}\" stroke=\"none\">",
+        style.fill.hex_rgb(),
+        layer_alpha(style)
+    );
+    let solid = frame.triangles.is_empty() && frame.faces.is_empty();
+    let loops = frame
+        .triangles
+        .iter()
+        .map(|t| &t[..])
+        .chain(frame.faces.iter().map(|f| &f[..]))
+        .chain(solid.then_some(&frame.outline[..]));
+    for l in loops {
+        let d = polygon_data(l, &pts);
+        if !d.is_empty() {
+            let _ = writeln!(out, "<path d=\"{d}\"/>");
+        }
+    }
+    out.push_str("</g>\n");
+
+    onion_paths(&mut out, onion, view, style);
+
+    if style.wireframe && style.wireframe_width > 0.0 {
+        let d = edges_data(frame, &pts);
+        if !d.is_empty() {
+            let _ = write!(out, "<path d=\"{d}\"");
+            stroke_attrs(&mut out, style.wireframe_color, style.wireframe_width);
+            out.push_str("/>\n");
+        }
+    }
+    if style.outline_width > 0.0 {
+        let d = path_data(&frame.outline, &pts, true);
+        if !d.is_empty() {
+            let _ = write!(out, "<path d=\"{d}\"");
+            stroke_attrs(&mut out, style.outline, style.outline_width);
+            out.push_str("/>\n");
+        }
+    }
+    if style.spine && !frame.spine.is_empty() {
+        let centres: Vec<_> = frame
+            .spine
+            .iter()
+            .map(|&t| {
+                let q = view.to_pixel(frame.centroid(t));
+                (q[0].is_finite() && q[1].is_finite()).then_some(q)
+            })
+            .collect();
+        let idx: Vec<u32> = (0..centres.len() as u32).collect();
+        let d = path_data(&idx, &centres, false);
+        if !d.is_empty() {
+            let _ = write!(out, "<path d=\"{d}\"");
+            stroke_attrs(
+                &mut out,
+                style.spine_color,
+                (style.outline_width * 0.75).max(1.0),
+            );
+            out.push_str("/>\n");
+        }
+    }
+    if style.markers && style.marker_radius > 0.0 {
+        for &m in &frame.markers {
+            let [x, y] = view.to_pixel(m);
+            if x.is_finite() && y.is_finite() {
+                out.push_str("<circle cx=\"");
+                num(&mut out, x);
+                out.push_str("\" cy=\"");
+                num(&mut out, y);
+                let _ = write!(out, "\" r=\"{}\"", style.marker_radius);
+                color_attr(&mut out, "fill", style.marker_color);
+                color_attr(&mut out, "stroke", style.outline);
+                out.push_str("/>\n");
+            }
+        }
+    }
+    out.push_str("</svg>\n");
+    Ok(out)
+}
+
+/// Writes every frame as `dir/frame_0000.svg`, ... with one shared
+/// [`View`], like [`write_png_sequence`](crate::write_png_sequence).
+///
+/// # Errors
+///
+/// As [`write_png_sequence`](crate::write_png_sequence).
+pub fn write_svg_sequence(
+    frames: &[Frame],
+    dir: &Path,
+    style: &Style,
+    opts: &Output,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<Vec<PathBuf>, RenderError> {
+    let ghosts = onion(frames, style);
+    write_sequence(frames, dir, style, opts, progress, "svg", |f, view| {
+        svg_frame(f, view, style, &ghosts).map(String::into_bytes)
+    })
+}
+
+/// One SVG document whose filled outline is animated with SMIL: a single
+/// `<animate attributeName="d">` whose `values` hold the outline of every
+/// played frame ([`Loop::sequence`]), linearly interpolated, `(values - 1) /
+/// fps` seconds long. How overlap is shown is described in the module docs
+/// of this file: the path is filled `nonzero` plus once more where the
+/// winding number is even, so the doubly covered region is darker. With
+/// onion skin on, the first and last outlines are static ghosts.
+/// Triangles, wireframe, spine and markers are not drawn.
+///
+/// # Errors
+///
+/// [`RenderError::NoFrames`], [`RenderError::BadFps`], a size error,
+/// [`RenderError::OutlineMismatch`] unless every frame has an outline of the
+/// same non-zero length, [`RenderError::InFrame`] for a bad index or a
+/// non-finite outline point (reported as [`RenderError::NonFinitePoint`]),
+/// or an output-safety error for `path`.
+pub fn animated_svg(
+    frames: &[Frame],
+    style: &Style,
+    fps: f64,
+    looping: Loop,
+) -> Result<String, RenderError> {
+    let Some(first) = frames.first() else {
+        return Err(RenderError::NoFrames);
+    };
+    check_fps(fps)?;
+    style.check_size()?;
+    let expected = first.outline.len();
+    for (i, f) in frames.iter().enumerate() {
+        f.check_indices().map_err(|e| e.in_frame(i))?;
+        if f.outline.len() != expected || expected == 0 {
+            return Err(RenderError::OutlineMismatch {
+                frame: i,
+                expected,
+                found: f.outline.len(),
+            });
+        }
+    }
+    let view = View::fit(frames, style);
+    let mut shapes = Vec::with_capacity(frames.len());
+    for (i, f) in frames.iter().enumerate() {
+        let pts = pixel_points(f, &view);
+        if let Some(&bad) = f.outline.iter().find(|&&k| pts[k as usize].is_none()) {
+            return Err(RenderError::NonFinitePoint { index: bad }.in_frame(i));
+        }
+        shapes.push(path_data(&f.outline, &pts, true));
+    }
+    let order = looping.sequence(frames.len());
+    let values: Vec<&str> = order.iter().map(|&i| shapes[i].as_str()).collect();
+    let dur = (values.len().max(2) - 1) as f64 / fps;
+    let repeat = if looping == Loop::Once {
+        "1"
+    } else {
+        "indefinite"
+    };
+
+    let mut out = String::new();
+    header(&mut out, style);
+    let (w, h) = (style.width, style.height);
+    let _ = write!(
+        out,
+        "<defs>\n<path id=\"shape\" d=\"{}\">\n<animate attributeName=\"d\" dur=\"{dur}s\" \
+         repeatCount=\"{repeat}\" fill=\"freeze\" calcMode=\"linear\" values=\"{}\"/>\n</path>\n\
+         <mask id=\"even\" maskUnits=\"userSpaceOnUse\" x=\"0\" y=\"0\" width=\"{w}\" height=\"{h}\">\n\
+         <use xlink:href=\"#shape\" fill=\"white\" fill-rule=\"nonzero\"/>\n\
+         <use xlink:href=\"#shape\" fill=\"black\" fill-rule=\"evenodd\"/>\n</mask>\n</defs>\n",
+        shapes[0],
+        values.join(";")
+    );
+    let fill = format!(
+        "fill=\"{}\" fill-opacity=\"{:.3}\" stroke=\"none\"",
+        style.fill.hex_rgb(),
+        layer_alpha(style)
+    );
+    let _ = writeln!(
+        out,
+        "<use xlink:href=\"#shape\" {fill} fill-rule=\"nonzero\"/>"
+    );
+    let _ = writeln!(
+        out,
+        "<use xlink:href=\"#shape\" {fill} fill-rule=\"nonzero\" mask=\"url(#even)\"/>"
+    );
+    onion_paths(&mut out, &onion(frames, style), &view, style);
+    if style.outline_width > 0.0 {
+        out.push_str("<use xlink:href=\"#shape\"");
+        stroke_attrs(&mut out, style.outline, style.outline_width);
+        out.push_str("/>\n");
+    }
+    out.push_str("</svg>\n");
+    Ok(out)
+}
+
+/// Writes [`animated_svg`] to `path` with [`write_atomic`].
+///
+/// # Errors
+///
+/// As [`animated_svg`] and [`write_atomic`]; an existing `path` is refused
+/// without `opts.force` before anything is computed.
+pub fn write_animated_svg(
+    frames: &[Frame],
+    path: &Path,
+    style: &Style,
+    fps: f64,
+    looping: Loop,
+    opts: &Output,
+) -> Result<(), RenderError> {
+    if !opts.force && std::fs::symlink_metadata(path).is_ok() {
+        return Err(RenderError::FileExists { path: path.into() });
+    }
+    let svg = animated_svg(frames, style, fps, looping)?;
+    write_atomic(path, svg.as_bytes(), opts.force)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_short() {
+        let mut s = String::new();
+        for v in [1.0, 2.5, -0.001, 1.23456] {
+            num(&mut s, v);
+            s.push(' ');
+        }
+        assert_eq!(s, "1 2.5 0 1.23 ");
+    }
+}

@@ -37,19 +37,20 @@ def stroke_outline(centre, width, samples, cap=8):
         right.append((c[0] - nx * w, c[1] - ny * w))
 
     def cap_pts(c, w, ang_from):
-        return [(c[0] + w * math.cos(ang_from + math.pi * k / cap),
-                 c[1] + w * math.sin(ang_from + math.pi * k / cap)) for k in range(1, cap)]
+        # Half circle from ang_from, turning clockwise (toward the tangent
+        # at the end, away from it at the start).
+        return [(c[0] + w * math.cos(ang_from - math.pi * k / cap),
+                 c[1] + w * math.sin(ang_from - math.pi * k / cap)) for k in range(1, cap)]
 
-    def normal_angle(s, sign):
+    def normal_angle(s):
         h = 1e-4
         a, b = centre(max(0, s - h)), centre(min(1, s + h))
-        return math.atan2(b[1] - a[1], b[0] - a[0]) + sign * math.pi / 2
+        return math.atan2(b[1] - a[1], b[0] - a[0]) + math.pi / 2
 
-    end = cap_pts(centre(1), width(1), normal_angle(1, 1) + math.pi)
-    end = cap_pts(centre(1), width(1), normal_angle(1, 1))
-    start = cap_pts(centre(0), width(0), normal_angle(0, -1))
+    end = cap_pts(centre(1), width(1), normal_angle(1))
+    start = cap_pts(centre(0), width(0), normal_angle(0) + math.pi)
     # left edge forward, round cap at the end, right edge back, cap at start
-    return left + [p for p in reversed(end)][::-1] + right[::-1] + start
+    return left + end + right[::-1] + start
 
 
 def write(name, w, h, body):

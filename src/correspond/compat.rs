@@ -96,7 +96,7 @@ pub fn shift_triangles(n: usize, triangles: &[[u32; 3]], k: usize) -> Vec<[u32; 
 /// Triangles come out with corners in cyclic order, smallest first, sorted.
 pub fn from_degree_sequence(degrees: &[u32]) -> Option<Vec<[u32; 3]>> {
     let n = degrees.len();
-    if n < 3 || degrees.iter().any(|&d| d == 0) {
+    if n < 3 || degrees.contains(&0) {
         return None;
     }
     let mut deg = degrees.to_vec();

@@ -5,7 +5,7 @@ mod compatible;
 mod curves;
 mod paths;
 
-pub use compatible::{Compatible, CompatibleError, DEFAULT_FAN_MARGIN, area_and_centroid};
+pub use compatible::{Compatible, CompatibleError, DEFAULT_FAN_MARGIN, area_and_centroid, lay_out};
 pub use curves::{
     Counts, CurveMorphError, CurveMorphOptions, Prepared, Side, equal_counts, morph_curves,
     prepare_compatible, triangulate_side,

@@ -30,7 +30,10 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         .parse()
         .with_context(|| format!("--easing '{}'", args.easing))?;
     if !(args.fps.is_finite() && args.fps > 0.0 && args.fps <= 1000.0) {
-        anyhow::bail!("--fps {} is not a rate from 0 to 1000 frames per second", args.fps);
+        anyhow::bail!(
+            "--fps {} is not a rate from 0 to 1000 frames per second",
+            args.fps
+        );
     }
     // Refuse to overwrite before doing any work.
     if let Some(json) = &args.json
@@ -92,14 +95,19 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
     }
     if args.metrics {
         let m = metrics(&morph.frames);
-        let opt = |v: Option<f64>| v.map_or("n/a (triangulation changes)".to_string(), |v| format!("{v:.6}"));
+        let opt = |v: Option<f64>| {
+            v.map_or("n/a (triangulation changes)".to_string(), |v| {
+                format!("{v:.6}")
+            })
+        };
         output::print(&format!(
             "path                 {}{}\nframes               {} ({} valid)\narea rank (AR)       {}\narea variance (Var)  {}\nminimum angle        {:.4}° (inputs {:.4}°)\nballooning           {:.4}\nsmallest area share  {}",
             morph.path,
             if morph.fallback { " (fallback)" } else { "" },
             m.frames,
             m.valid_frames,
-            m.area_rank.map_or("n/a (triangulation changes)".to_string(), |r| r.to_string()),
+            m.area_rank
+                .map_or("n/a (triangulation changes)".to_string(), |r| r.to_string()),
             opt(m.area_variance),
             m.min_angle_deg,
             m.endpoint_min_angle_deg,
@@ -143,11 +151,16 @@ pub(crate) fn write_images(args: &MorphArgs, out: &Path, morph: &Morph) -> anyho
     } else {
         render::Loop::Loop
     };
-    write_frames(&frames, out, format, &style, args.fps, looping, args.force, args.quiet)
+    write_frames(
+        &frames, out, format, &style, args.fps, looping, args.force, args.quiet,
+    )
 }
 
 /// Writes rendered frames in `format` to `out` with a progress bar.
-#[allow(clippy::too_many_arguments, reason = "plain glue between CLI options and the renderer")]
+#[allow(
+    clippy::too_many_arguments,
+    reason = "plain glue between CLI options and the renderer"
+)]
 pub(crate) fn write_frames(
     frames: &[render::Frame],
     out: &Path,

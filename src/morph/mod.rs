@@ -3,6 +3,7 @@
 
 mod compatible;
 mod curves;
+pub mod flips;
 mod paths;
 
 pub use compatible::{Compatible, CompatibleError, DEFAULT_FAN_MARGIN, area_and_centroid, lay_out};

@@ -5,10 +5,9 @@
 #![deny(rustdoc::broken_intra_doc_links)]
 
 pub mod geom;
-
-pub use geom::Point;
 pub mod immersion;
 pub mod quality;
 
+pub use geom::Point;
 pub use immersion::{Immersion, ImmersionDefect, NotSelfOverlapping, triangulate};
 pub use quality::{Quality, improve, triangulate_maxmin, triangulate_with};

@@ -249,6 +249,10 @@ pub(crate) fn sort_around(
         let q = points[k as usize];
         let (dx, dy) = (q.x - o.x, q.y - o.y);
         let s = dx.abs() + dy.abs();
+        if !s.is_finite() {
+            // An overflowing difference: no usable key (marks all untrusted).
+            return f64::NAN;
+        }
         if upper(o, q) {
             if dx >= 0.0 { dy / s } else { 1.0 - dx / s }
         } else if dx <= 0.0 {

@@ -34,13 +34,15 @@ pub(crate) struct Table {
     pub(crate) planes: HalfPlanes,
 }
 
-/// Visit the valid apexes `k` of `(i, j)` word by word: `f(w, bits)` gets
-/// the word index and the mask of `k ∈ (i, j)` in that word with
-/// `(i, k, j)` valid. Stops when `f` returns true; returns whether it did.
+/// Visit the apexes `k ∈ (i, j)` with `(i, k, j)` valid and bits set in
+/// both `row` and `col` (`Q[i][k]` and `Q[k][j]`), word by word: `f(w, bits)`
+/// gets the word index and the mask. Stops when `f` returns true; returns
+/// whether it did.
 #[inline]
 pub(crate) fn for_valid_words(
     planes: &HalfPlanes,
     ccw: &BitMatrix,
+    (row, col): (&[u64], &[u64]),
     i: usize,
     j: usize,
     mut f: impl FnMut(usize, u64) -> bool,
@@ -48,20 +50,29 @@ pub(crate) fn for_valid_words(
     if planes.bad_flags[i] || planes.bad_flags[j] {
         return false;
     }
-    let ccw_row = ccw.row(j);
-    let corners = planes.corners(i, j);
+    let c = planes.corners(i, j);
     let (first, last) = ((i + 1) / 64, (j - 1) / 64);
-    #[allow(
-        clippy::needless_range_loop,
-        reason = "w indexes several bit rows at once"
-    )]
-    for w in first..=last {
-        let mut bits = ccw_row[w] & corners.word(w);
-        if w == first || w == last {
-            bits &= open_range_word(w, i, j);
-        }
-        if bits != 0 && f(w, bits) {
-            return true;
+    let r = first..last + 1;
+    // Equal-length slices over the word range: no bounds checks inside.
+    let ccw = &ccw.row(j)[r.clone()];
+    let len = ccw.len();
+    let (row, col) = (&row[r.clone()][..len], &col[r.clone()][..len]);
+    let (ri, rj) = (&c.ri[r.clone()][..len], &c.rj[r.clone()][..len]);
+    let (ti, tj) = (&c.ti[r.clone()][..len], &c.tj[r.clone()][..len]);
+    let bad = &c.bad[r][..len];
+    for t in 0..len {
+        let at_i = !ri[t] | c.keep_i;
+        let at_j = rj[t] | c.keep_j;
+        // Corner k (u = j, w = i): fails iff j ∈ R_k and i ∉ R_k.
+        let at_k = !(tj[t] & !ti[t]);
+        let mut bits = row[t] & col[t] & ccw[t] & at_i & at_j & at_k & !bad[t];
+        if bits != 0 {
+            if t == 0 || t == len - 1 {
+                bits &= open_range_word(first + t, i, j);
+            }
+            if bits != 0 && f(first + t, bits) {
+                return true;
+            }
         }
     }
     false
@@ -85,10 +96,8 @@ pub(crate) fn decide(points: &[Point], progress: &mut dyn FnMut(f64)) -> Table {
         cols.set(i + 1, i);
         ccw.compute(points, i);
         for j in i + 2..n {
-            let (row_i, col_j) = (rows.row(i), cols.row(j));
-            let found = for_valid_words(&planes, &ccw.ccw, i, j, |w, bits| {
-                bits & row_i[w] & col_j[w] != 0
-            });
+            let rc = (rows.row(i), cols.row(j));
+            let found = for_valid_words(&planes, &ccw.ccw, rc, i, j, |_, _| true);
             if found {
                 rows.set(i, j);
                 cols.set(j, i);

@@ -204,6 +204,38 @@ mod tests {
     }
 
     #[test]
+    fn every_cell_agrees_with_a_naive_dp_across_words() {
+        // A noisy spiral strip with n > 128: many true and false cells, rows
+        // and columns spanning several words.
+        let mut r = rng(3);
+        let n = 140;
+        let half = n / 2;
+        let at = |i: usize, r0: f64| {
+            let a = i as f64 / (half - 1) as f64 * 9.0;
+            Point::new((r0 + 0.3 * a) * a.cos(), (r0 + 0.3 * a) * a.sin())
+        };
+        let mut pts: Vec<Point> = (0..half).map(|i| at(i, 2.0)).collect();
+        pts.extend((0..half).rev().map(|i| at(i, 1.0)));
+        for p in &mut pts {
+            *p += Point::new(r() - 0.5, r() - 0.5) * 0.2;
+        }
+        let table = dp::decide(&pts, &mut |_| {});
+        let mut q = vec![vec![false; n]; n];
+        let (mut yes, mut no) = (0, 0);
+        for i in (0..n - 1).rev() {
+            q[i][i + 1] = true;
+            for j in i + 2..n {
+                q[i][j] =
+                    (i + 1..j).any(|k| q[i][k] && q[k][j] && is_valid_triangle(&pts, i, k, j));
+                assert_eq!(table.rows.get(i, j), q[i][j], "cell ({i}, {j})");
+                assert_eq!(table.cols.get(j, i), q[i][j], "cell ({i}, {j})");
+                if q[i][j] { yes += 1 } else { no += 1 }
+            }
+        }
+        assert!(yes > 500 && no > 500, "{yes} {no}");
+    }
+
+    #[test]
     fn no_panic_on_strange_input() {
         let nan = Point::new(f64::NAN, 0.0);
         let inf = Point::new(f64::INFINITY, 1.0);

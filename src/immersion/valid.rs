@@ -173,17 +173,18 @@ impl HalfPlanes {
 
 /// Corner-test masks for one chord `(i, j)`; see [`HalfPlanes::corners`].
 pub(crate) struct Corners<'a> {
-    ri: &'a [u64],
-    rj: &'a [u64],
-    ti: &'a [u64],
-    tj: &'a [u64],
-    bad: &'a [u64],
-    keep_i: u64,
-    keep_j: u64,
+    pub(crate) ri: &'a [u64],
+    pub(crate) rj: &'a [u64],
+    pub(crate) ti: &'a [u64],
+    pub(crate) tj: &'a [u64],
+    pub(crate) bad: &'a [u64],
+    pub(crate) keep_i: u64,
+    pub(crate) keep_j: u64,
 }
 
+#[cfg(test)]
 impl Corners<'_> {
-    /// Word `w` of the mask.
+    /// Word `w` of the mask (the DP inlines the same expression).
     #[inline]
     pub(crate) fn word(&self, w: usize) -> u64 {
         let at_i = !self.ri[w] | self.keep_i;
@@ -248,6 +249,10 @@ pub(crate) fn sort_around(
         let q = points[k as usize];
         let (dx, dy) = (q.x - o.x, q.y - o.y);
         let s = dx.abs() + dy.abs();
+        if !s.is_finite() {
+            // An overflowing difference: no usable key (marks all untrusted).
+            return f64::NAN;
+        }
         if upper(o, q) {
             if dx >= 0.0 { dy / s } else { 1.0 - dx / s }
         } else if dx <= 0.0 {

@@ -89,8 +89,8 @@ pub(crate) fn maxmin(points: &[Point], progress: &mut dyn FnMut(f64)) -> Option<
                 let (row_i, col_j) = (rows.row(i), cols.row(j));
                 let (vi, vj) = (&val[i * n..(i + 1) * n], &val_t[j * n..(j + 1) * n]);
                 let (si, sj) = (&sum[i * n..(i + 1) * n], &sum_t[j * n..(j + 1) * n]);
-                for_valid_words(&planes, &ccw.ccw, i, j, |w, bits| {
-                    let mut m = bits & row_i[w] & col_j[w];
+                for_valid_words(&planes, &ccw.ccw, (row_i, col_j), i, j, |w, bits| {
+                    let mut m = bits;
                     while m != 0 {
                         let k = w * 64 + m.trailing_zeros() as usize;
                         m &= m - 1;

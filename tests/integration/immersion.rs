@@ -229,6 +229,46 @@ fn larger_curves_keep_the_order_of_qualities() {
     }
 }
 
+#[test]
+fn strange_inputs_never_panic_and_answers_pass_the_check() {
+    let mut r = Rng(0xbad_1dea);
+    let specials = [
+        f64::NAN,
+        f64::INFINITY,
+        -f64::INFINITY,
+        0.0,
+        -0.0,
+        1e300,
+        -1e-300,
+        f64::MIN_POSITIVE,
+    ];
+    for round in 0..3000 {
+        let n = r.below(12);
+        let mut pts: Vec<Point> = Vec::with_capacity(n);
+        for _ in 0..n {
+            let p = match r.below(6) {
+                // A near-duplicate of an earlier point, a few ulps away.
+                0 if !pts.is_empty() => {
+                    let q = pts[r.below(pts.len())];
+                    Point::new(
+                        f64::from_bits(q.x.to_bits().wrapping_add(r.below(3) as u64)),
+                        q.y,
+                    )
+                }
+                1 if round % 4 == 0 => Point::new(specials[r.below(specials.len())], r.f()),
+                2 => Point::new(r.below(3) as f64, r.below(3) as f64),
+                _ => Point::new(r.f(), r.f()),
+            };
+            pts.push(p);
+        }
+        for q in Quality::ALL {
+            if let Ok(imm) = triangulate_with(&pts, q) {
+                assert_eq!(check(&imm.points, &imm.triangles), Ok(()), "{pts:?}");
+            }
+        }
+    }
+}
+
 /// Inside triangles of spade's constrained Delaunay triangulation of a
 /// simple polygon, as sorted index triples.
 fn spade_cdt(points: &[Point]) -> Vec<[u32; 3]> {

@@ -167,9 +167,16 @@ pub fn write_atomic(path: &Path, bytes: &[u8], force: bool) -> Result<(), Render
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
-    let mut tmp = tempfile::Builder::new()
-        .prefix(".immerse-")
-        .suffix(".tmp")
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".immerse-").suffix(".tmp");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        // Ordinary file permissions (subject to the umask), not the private
+        // 0600 of temporary files, since the file is renamed into place.
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    let mut tmp = builder
         .tempfile_in(parent)
         .map_err(|e| RenderError::io(parent, e))?;
     tmp.write_all(bytes)

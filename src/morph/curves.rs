@@ -1,13 +1,13 @@
 //! Morphing two curves end to end: equal vertex counts, triangulation,
 //! correspondence, then the morph (DESIGN.md §5–7).
 
-use super::{MorphError, MorphOptions, morph_with};
-use crate::correspond::{
-    compatible_shift, degree_sequence, insert_vertices, resample_arc_length, shift_triangles,
-};
-use crate::frames::Morph;
+use super::Staged;
+use super::flips::crossings_per_shift;
+use super::{MorphError, MorphOptions, ThirdVertexPath};
+use crate::correspond::{insert_vertices, resample_arc_length, shift_triangles};
+use crate::frames::{Frame, Morph};
 use crate::geom::Point;
-use crate::immersion::{Immersion, NotSelfOverlapping, check};
+use crate::immersion::{Immersion, NotSelfOverlapping};
 use crate::quality::{Quality, triangulate_with};
 
 /// How the two curves are brought to the same vertex count.
@@ -32,6 +32,8 @@ pub struct CurveMorphOptions {
     pub morph: MorphOptions,
     /// How vertex counts are equalised. Default: [`Counts::Insert`].
     pub counts: Counts,
+    /// How vertices are matched. Default: [`Correspondence::Shape`].
+    pub correspondence: Correspondence,
 }
 
 impl CurveMorphOptions {
@@ -40,6 +42,7 @@ impl CurveMorphOptions {
         quality: Quality::Delaunay,
         morph: MorphOptions::DEFAULT,
         counts: Counts::Insert,
+        correspondence: Correspondence::Shape,
     };
 
     /// Sets the triangulation quality.
@@ -51,6 +54,12 @@ impl CurveMorphOptions {
     /// Sets the morph options.
     pub fn with_morph(mut self, morph: MorphOptions) -> Self {
         self.morph = morph;
+        self
+    }
+
+    /// Sets the correspondence rule.
+    pub fn with_correspondence(mut self, correspondence: Correspondence) -> Self {
+        self.correspondence = correspondence;
         self
     }
 
@@ -97,30 +106,9 @@ pub enum CurveMorphError {
         /// Why.
         reason: NotSelfOverlapping,
     },
-    /// No common triangulation was found (a negative answer).
-    #[error(
-        "the triangulations of the two curves are incompatible (no cyclic shift matches their degree sequences, and neither triangulation is valid on the other curve)"
-    )]
-    Incompatible,
     /// The morph failed.
     #[error(transparent)]
     Morph(#[from] MorphError),
-}
-
-/// Two curves with equal vertex counts, a correspondence and a common
-/// triangulation.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Prepared {
-    /// The source polygon (with any inserted vertices).
-    pub source: Vec<Point>,
-    /// The target polygon, cyclically shifted so that vertex `i`
-    /// corresponds to source vertex `i`.
-    pub target: Vec<Point>,
-    /// The shift: target vertex `i` is the target curve's vertex
-    /// `(i + shift) % n` after equalising counts.
-    pub shift: usize,
-    /// The triangulation valid on both.
-    pub triangles: Vec<[u32; 3]>,
 }
 
 /// Equalises vertex counts as `counts` says.
@@ -149,80 +137,225 @@ pub fn triangulate_side(
         .map_err(|reason| CurveMorphError::NotSelfOverlapping { side, reason })
 }
 
-/// Finds a common triangulation of two curves with equal vertex counts:
-/// first a cyclic shift under which the two triangulations' degree
-/// sequences agree (then they are the same triangulation), else either
-/// triangulation if it is valid on the other curve as it stands.
-///
-/// # Errors
-///
-/// [`CurveMorphError::NotSelfOverlapping`] or
-/// [`CurveMorphError::Incompatible`].
-pub fn prepare_compatible(
-    a: &[Point],
-    b: &[Point],
-    quality: Quality,
-) -> Result<Prepared, CurveMorphError> {
-    let ia = triangulate_side(a, quality, Side::Source)?;
-    let ib = triangulate_side(b, quality, Side::Target)?;
-    let n = a.len();
-    let (da, db) = (
-        degree_sequence(n, &ia.triangles),
-        degree_sequence(n, &ib.triangles),
-    );
-    let shifted = |k: usize| -> Vec<Point> { (0..n).map(|i| b[(i + k) % n]).collect() };
-    if let Some(k) = compatible_shift(&da, &db) {
-        let target = shifted(k);
-        let mut t2 = shift_triangles(n, &ib.triangles, k);
-        t2.sort_unstable();
-        let mut t1 = ia.triangles.clone();
-        t1.sort_unstable();
-        if t1 == t2 && check(&target, &t1).is_ok() {
-            return Ok(Prepared {
-                source: a.to_vec(),
-                target,
-                shift: k,
-                triangles: ia.triangles,
-            });
-        }
-    }
-    for tris in [&ia.triangles, &ib.triangles] {
-        if check(a, tris).is_ok() && check(b, tris).is_ok() {
-            return Ok(Prepared {
-                source: a.to_vec(),
-                target: b.to_vec(),
-                shift: 0,
-                triangles: tris.clone(),
-            });
-        }
-    }
-    Err(CurveMorphError::Incompatible)
+/// How vertex `i` of the source is matched to a vertex of the target
+/// (after equalising counts): a cyclic shift chosen by one of these rules.
+/// Every rule is symmetric, so swapping the curves gives the opposite
+/// shift.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Correspondence {
+    /// Vertex 0 matches vertex 0.
+    Identity,
+    /// The pivot vertices (seed 004 §6.1) of the two triangulations match.
+    Pivot,
+    /// The shift with the fewest crossings between the two triangulations
+    /// (fewest flips); ties go to the shapes' best geometric match.
+    MinFlips,
+    /// The shift that best matches the shapes themselves: least sum of
+    /// squared distances between matched vertices after normalising
+    /// position and size.
+    #[default]
+    Shape,
 }
 
-/// Morphs curve `a` into curve `b` (both oriented, turning number +1),
-/// one frame per value of `times`; every frame passes the exact immersion
-/// check.
+impl Correspondence {
+    /// All rules, in CLI order.
+    pub const ALL: [Correspondence; 4] = [
+        Correspondence::Shape,
+        Correspondence::MinFlips,
+        Correspondence::Pivot,
+        Correspondence::Identity,
+    ];
+
+    /// The CLI name.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Correspondence::Identity => "identity",
+            Correspondence::Pivot => "pivot",
+            Correspondence::MinFlips => "min-flips",
+            Correspondence::Shape => "shape",
+        }
+    }
+}
+
+/// Normalised shape-matching cost of every cyclic shift k: Σ |â_i −
+/// b̂_{i+k}|², with both curves centred at their vertex mean and scaled
+/// to unit RMS radius. O(n²).
+pub fn shape_cost_per_shift(a: &[Point], b: &[Point]) -> Vec<f64> {
+    let norm = |p: &[Point]| -> Vec<Point> {
+        let c = p.iter().copied().sum::<Point>() / p.len() as f64;
+        let r = (p.iter().map(|q| (*q - c).length_squared()).sum::<f64>() / p.len() as f64)
+            .sqrt()
+            .max(f64::MIN_POSITIVE);
+        p.iter().map(|q| (*q - c) / r).collect()
+    };
+    let (a, b) = (norm(a), norm(b));
+    let n = a.len();
+    (0..n)
+        .map(|k| {
+            (0..n)
+                .map(|i| (a[i] - b[(i + k) % n]).length_squared())
+                .sum()
+        })
+        .collect()
+}
+
+/// Chooses the cyclic shift k (target vertex `i + k` matches source
+/// vertex `i`) by `rule`.
+pub fn choose_shift(
+    a: &[Point],
+    b: &[Point],
+    ta: &[[u32; 3]],
+    tb: &[[u32; 3]],
+    rule: Correspondence,
+) -> usize {
+    let n = a.len();
+    match rule {
+        Correspondence::Identity => 0,
+        Correspondence::Pivot => {
+            let spine = |p: &[Point], t: &[[u32; 3]]| {
+                crate::tree::DualTree::new(p.len(), t)
+                    .map(|tree| tree.spine(p).pivot_vertex as usize)
+                    .unwrap_or(0)
+            };
+            (spine(b, tb) + n - spine(a, ta)) % n
+        }
+        Correspondence::Shape => {
+            let geo = shape_cost_per_shift(a, b);
+            (0..n)
+                .min_by(|&i, &j| {
+                    geo[i]
+                        .total_cmp(&geo[j])
+                        .then(i.min(n - i).cmp(&j.min(n - j)))
+                })
+                .unwrap_or(0)
+        }
+        Correspondence::MinFlips => {
+            let geo = shape_cost_per_shift(a, b);
+            let cross = crossings_per_shift(n, ta, tb);
+            (0..n)
+                .min_by(|&i, &j| {
+                    cross[i]
+                        .cmp(&cross[j])
+                        .then(geo[i].total_cmp(&geo[j]))
+                        .then(i.min(n - i).cmp(&j.min(n - j)))
+                })
+                .unwrap_or(0)
+        }
+    }
+}
+
+/// What [`morph_curves`] did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MorphReport {
+    /// Vertices of each curve after equalising counts.
+    pub n: usize,
+    /// The cyclic shift of the correspondence (target vertex `i + shift`
+    /// matches source vertex `i`).
+    pub shift: usize,
+    /// Flips on the side used.
+    pub flips: usize,
+    /// Where the source's side reached the target's triangulation (0 when
+    /// no flip was needed, 1 at the disk).
+    pub u_star: f64,
+    /// The same from the target's side.
+    pub v_star: f64,
+    /// The side whose path was used.
+    pub used: Side,
+}
+
+/// Morphs curve `a` into curve `b` (both oriented, turning number +1).
+/// `fractions` place the output frames along the path by cumulative
+/// maximum vertex displacement (0 = `a`, 1 = `b`); every frame passes the
+/// exact immersion check.
+///
+/// Both curves are brought to equal counts and triangulated; a cyclic
+/// shift matches their vertices; each curve is then staged toward the
+/// other's triangulation (DESIGN.md §7) and the side that gets there first
+/// is used, so `morph_curves(a, b)` is `morph_curves(b, a)` reversed.
 ///
 /// # Errors
 ///
-/// [`CurveMorphError`]: a curve is not self-overlapping, no common
-/// triangulation was found, or the morph failed.
+/// [`CurveMorphError`]: a curve is not self-overlapping, or (a bug) the
+/// morph failed.
 pub fn morph_curves(
     a: &[Point],
     b: &[Point],
-    times: &[f64],
+    fractions: &[f64],
     options: &CurveMorphOptions,
-) -> Result<(Prepared, Morph), CurveMorphError> {
+) -> Result<(MorphReport, Morph), CurveMorphError> {
     let (a, b) = equal_counts(a, b, options.counts);
-    let prepared = prepare_compatible(&a, &b, options.quality)?;
-    let plan = super::Compatible::new(
-        &prepared.source,
-        &prepared.target,
-        &prepared.triangles,
-        options.morph.root,
-        options.morph.fan_margin,
-    )
-    .map_err(MorphError::from)?;
-    let morph = morph_with(&plan, times, options.morph.path)?;
-    Ok((prepared, morph))
+    let n = a.len();
+    let ta = triangulate_side(&a, options.quality, Side::Source)?.triangles;
+    let tb = triangulate_side(&b, options.quality, Side::Target)?.triangles;
+    let k = choose_shift(&a, &b, &ta, &tb, options.correspondence);
+    let b_in_a: Vec<Point> = (0..n).map(|i| b[(i + k) % n]).collect();
+    let tb_in_a = shift_triangles(n, &tb, k);
+    let a_in_b: Vec<Point> = (0..n).map(|j| a[(j + n - k) % n]).collect();
+    let ta_in_b = shift_triangles(n, &ta, (n - k) % n);
+    let m = &options.morph;
+    let side_a = Staged::new(&a, &ta, &b_in_a, &tb_in_a, m.path, m.root, m.fan_margin)?;
+    let side_b = Staged::new(&b, &tb, &a_in_b, &ta_in_b, m.path, m.root, m.fan_margin)?;
+    let lex = |p: &[Point]| -> Vec<u64> {
+        p.iter()
+            .flat_map(|q| [q.x.to_bits(), q.y.to_bits()])
+            .collect()
+    };
+    let use_a = match side_a.u_star.total_cmp(&side_b.u_star) {
+        std::cmp::Ordering::Less => true,
+        std::cmp::Ordering::Greater => false,
+        std::cmp::Ordering::Equal => lex(&a) <= lex(&b),
+    };
+    let report = |used: Side, flips: usize| MorphReport {
+        n,
+        shift: k,
+        flips,
+        u_star: side_a.u_star,
+        v_star: side_b.u_star,
+        used,
+    };
+    if use_a {
+        let flips = side_a.flips;
+        let mut side = side_a.clone();
+        let (frames, fallback) = side.frames(fractions)?;
+        let path = if fallback {
+            ThirdVertexPath::Hybrid
+        } else {
+            m.path
+        };
+        Ok((
+            report(Side::Source, flips),
+            Morph {
+                path,
+                fallback,
+                frames,
+            },
+        ))
+    } else {
+        let flips = side_b.flips;
+        let mut side = side_b.clone();
+        let back: Vec<f64> = fractions.iter().rev().map(|f| 1.0 - f).collect();
+        let (frames, fallback) = side.frames(&back)?;
+        let frames = frames
+            .into_iter()
+            .rev()
+            .map(|f| Frame {
+                t: 1.0 - f.t,
+                points: (0..n).map(|i| f.points[(i + k) % n]).collect(),
+                triangles: shift_triangles(n, &f.triangles, k),
+            })
+            .collect();
+        let path = if fallback {
+            ThirdVertexPath::Hybrid
+        } else {
+            m.path
+        };
+        Ok((
+            report(Side::Target, flips),
+            Morph {
+                path,
+                fallback,
+                frames,
+            },
+        ))
+    }
 }

@@ -4,13 +4,15 @@
 mod compatible;
 mod curves;
 pub mod flips;
+mod incompatible;
 mod paths;
 
 pub use compatible::{Compatible, CompatibleError, DEFAULT_FAN_MARGIN, area_and_centroid, lay_out};
 pub use curves::{
-    Counts, CurveMorphError, CurveMorphOptions, Prepared, Side, equal_counts, morph_curves,
-    prepare_compatible, triangulate_side,
+    Correspondence, Counts, CurveMorphError, CurveMorphOptions, MorphReport, Side, choose_shift,
+    equal_counts, morph_curves, shape_cost_per_shift, triangulate_side,
 };
+pub use incompatible::{SCHEDULE_STEP, Staged, disk_for};
 pub use paths::ThirdVertexPath;
 
 use crate::frames::{Frame, Morph};

@@ -54,6 +54,34 @@ pub(crate) enum Command {
         after_help = "Examples:\n  immerse morph a.json b.json --frames 40 --json morph.json\n  immerse morph a.svg b.svg -o frames/ --format png --size 800x800\n  immerse morph a.svg b.svg -o morph.gif --easing ease-in-out --ping-pong"
     )]
     Morph(MorphArgs),
+    /// Morph two curves shipped inside immerse and write PNG frames and a GIF.
+    ///
+    /// A curled ribbon that overlaps itself becomes a tail that loops over
+    /// itself; every frame is verified to be an immersed disk. Writes into
+    /// immerse-demo/ by default; running it again replaces its own output
+    /// but never files it did not write.
+    #[command(after_help = "Examples:\n  immerse demo\n  immerse demo -o /tmp/show --frames 48")]
+    Demo(DemoArgs),
+}
+
+/// Arguments of `immerse demo`.
+#[derive(Debug, Args)]
+pub(crate) struct DemoArgs {
+    /// The output folder.
+    #[arg(short, long, value_name = "DIR", default_value = "immerse-demo")]
+    pub(crate) output: PathBuf,
+    /// Number of frames.
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(2..=2000))]
+    pub(crate) frames: u32,
+    /// Image size in pixels, WIDTHxHEIGHT.
+    #[arg(long, value_name = "WxH", default_value = "480x480", value_parser = parse_size)]
+    pub(crate) size: (u32, u32),
+    /// Write into the folder even if it holds other files (same-named files are replaced).
+    #[arg(long)]
+    pub(crate) force: bool,
+    /// No progress bars on stderr.
+    #[arg(short, long)]
+    pub(crate) quiet: bool,
 }
 
 /// Arguments of `immerse check`.
@@ -142,6 +170,19 @@ pub(crate) enum CountsArg {
     Resample,
 }
 
+/// How the vertices of the two curves are matched.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum CorrespondenceArg {
+    /// The cyclic shift that best matches the shapes themselves.
+    Shape,
+    /// The cyclic shift with the fewest edge flips between the triangulations.
+    MinFlips,
+    /// Match the pivot vertices of the two triangulations (seed paper §6.1).
+    Pivot,
+    /// Vertex 0 matches vertex 0.
+    Identity,
+}
+
 /// Arguments of `immerse morph`.
 #[derive(Debug, Args)]
 pub(crate) struct MorphArgs {
@@ -161,6 +202,9 @@ pub(crate) struct MorphArgs {
     /// How vertex counts are matched.
     #[arg(long, value_enum, default_value_t = CountsArg::Insert)]
     pub(crate) counts: CountsArg,
+    /// How vertices of the two curves are matched.
+    #[arg(long, value_enum, default_value_t = CorrespondenceArg::Shape)]
+    pub(crate) correspondence: CorrespondenceArg,
     /// Timing of the frames: linear, ease-in, ease-out, ease-in-out or
     /// cubic-bezier(x1,y1,x2,y2).
     #[arg(long, default_value = "linear")]

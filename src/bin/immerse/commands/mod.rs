@@ -2,6 +2,7 @@
 //! options, runs, and reports. Shared glue lives here.
 
 mod check;
+mod demo;
 mod morph;
 mod triangulate;
 
@@ -17,6 +18,7 @@ pub(crate) fn run(cli: Cli) -> anyhow::Result<Outcome> {
         Command::Check(args) => check::run(&args),
         Command::Triangulate(args) => triangulate::run(&args),
         Command::Morph(args) => morph::run(&args),
+        Command::Demo(args) => demo::run(&args),
     }
 }
 

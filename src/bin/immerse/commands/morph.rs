@@ -2,12 +2,13 @@
 
 use super::{plain_points, progress_bar};
 use crate::Outcome;
-use crate::args::{CountsArg, FormatArg, MorphArgs, PathArg};
+use crate::args::{CorrespondenceArg, CountsArg, FormatArg, MorphArgs, PathArg};
 use crate::output;
 use anyhow::Context;
 use immerse::frames::{Morph, metrics};
 use immerse::morph::{
-    Counts, CurveMorphError, CurveMorphOptions, MorphOptions, ThirdVertexPath, morph_curves,
+    Correspondence, Counts, CurveMorphError, CurveMorphOptions, MorphOptions, ThirdVertexPath,
+    morph_curves,
 };
 use immerse::{Curve, Quality};
 use immerse_render as render;
@@ -20,6 +21,17 @@ impl From<PathArg> for ThirdVertexPath {
             PathArg::Angle => ThirdVertexPath::Angle,
             PathArg::RotateSlide => ThirdVertexPath::RotateSlide,
             PathArg::Linear => ThirdVertexPath::Linear,
+        }
+    }
+}
+
+impl From<CorrespondenceArg> for Correspondence {
+    fn from(c: CorrespondenceArg) -> Correspondence {
+        match c {
+            CorrespondenceArg::Shape => Correspondence::Shape,
+            CorrespondenceArg::MinFlips => Correspondence::MinFlips,
+            CorrespondenceArg::Pivot => Correspondence::Pivot,
+            CorrespondenceArg::Identity => Correspondence::Identity,
         }
     }
 }
@@ -52,9 +64,10 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
             CountsArg::Insert => Counts::Insert,
             CountsArg::Resample => Counts::Resample,
         })
+        .with_correspondence(args.correspondence.into())
         .with_morph(MorphOptions::DEFAULT.with_path(args.path.into()));
-    let morph = match morph_curves(&src.points, &dst.points, &times, &options) {
-        Ok((_, morph)) => morph,
+    let (report, morph) = match morph_curves(&src.points, &dst.points, &times, &options) {
+        Ok(done) => done,
         Err(err @ CurveMorphError::NotSelfOverlapping { .. }) => {
             let file = match err {
                 CurveMorphError::NotSelfOverlapping {
@@ -64,14 +77,6 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
                 _ => &args.target,
             };
             output::note(&format!("{}: {err}", file.display()));
-            return Ok(Outcome::Negative);
-        }
-        Err(err @ CurveMorphError::Incompatible) => {
-            output::note(&format!(
-                "{} and {}: {err}",
-                args.source.display(),
-                args.target.display()
-            ));
             return Ok(Outcome::Negative);
         }
         Err(err) => return Err(err.into()),
@@ -101,7 +106,13 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
             })
         };
         output::print(&format!(
-            "path                 {}{}\nframes               {} ({} valid)\narea rank (AR)       {}\narea variance (Var)  {}\nminimum angle        {:.4}° (inputs {:.4}°)\nballooning           {:.4}\nsmallest area share  {}",
+            "vertices             {} (shift {}, {} flips on the {} side; u* {:.3}, v* {:.3})\npath                 {}{}\nframes               {} ({} valid)\narea rank (AR)       {}\narea variance (Var)  {}\nminimum angle        {:.4}° (inputs {:.4}°)\nballooning           {:.4}\nsmallest area share  {}",
+            report.n,
+            report.shift,
+            report.flips,
+            report.used,
+            report.u_star,
+            report.v_star,
             morph.path,
             if morph.fallback { " (fallback)" } else { "" },
             m.frames,

@@ -186,3 +186,100 @@ fn usage_errors_exit_2() {
     let out = immerse(&["frobnicate"]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+#[test]
+fn morph_writes_verified_json_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let (a, b) = (
+        curve("letter-E.json"),
+        curve("spiral-strip-400deg-n30.json"),
+    );
+    let args = [
+        "morph",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "--frames",
+        "12",
+        "--json",
+        "m.json",
+    ];
+    let out = immerse_in(dir.path(), &args);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let v: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("m.json")).unwrap()).unwrap();
+    assert_eq!(v["path"], "hybrid");
+    assert_eq!(v["fallback"], false);
+    let frames = v["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 12);
+    let n = frames[0]["points"].as_array().unwrap().len();
+    for f in frames {
+        let pts: Vec<immerse::Point> = f["points"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| immerse::Point::new(p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
+            .collect();
+        let tris: Vec<[u32; 3]> = serde_json::from_value(f["triangles"].clone()).unwrap();
+        assert_eq!(pts.len(), n);
+        assert!(
+            immerse::immersion::check(&pts, &tris).is_ok(),
+            "t = {}",
+            f["t"]
+        );
+    }
+    // A second run refuses to overwrite the file without --force.
+    let again = immerse_in(dir.path(), &args);
+    assert_eq!(again.status.code(), Some(2));
+    assert!(
+        stderr(&again).contains("m.json exists; pass --force"),
+        "{}",
+        stderr(&again)
+    );
+    let mut forced = args.to_vec();
+    forced.push("--force");
+    assert_eq!(immerse_in(dir.path(), &forced).status.code(), Some(0));
+}
+
+#[test]
+fn morph_with_a_curve_that_is_not_self_overlapping_exits_1() {
+    let (a, b) = (curve("letter-E.json"), curve("figure-eight-n64.json"));
+    let out = immerse(&["morph", a.to_str().unwrap(), b.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = stderr(&out);
+    assert!(err.contains("figure-eight-n64.json: the target curve is not self-overlapping: turning number is 0, not 1"), "{err}");
+}
+
+#[test]
+fn demo_runs_twice_and_never_touches_foreign_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = ["demo", "--frames", "6", "--size", "64x64", "-q"];
+    for _ in 0..2 {
+        let out = immerse_in(dir.path(), &args);
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    }
+    let demo = dir.path().join("immerse-demo");
+    assert!(demo.join("demo.gif").is_file());
+    assert!(demo.join("frame_0005.png").is_file());
+    std::fs::write(demo.join("notes.txt"), "mine").unwrap();
+    let out = immerse_in(dir.path(), &args);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("holds files the demo did not write"));
+    assert_eq!(
+        std::fs::read_to_string(demo.join("notes.txt")).unwrap(),
+        "mine"
+    );
+}
+
+#[test]
+fn check_says_why_a_curve_is_not_self_overlapping() {
+    let p = curve("turning-one-not-self-overlapping-n9.json");
+    let out = immerse(&["check", p.to_str().unwrap(), "--json"]);
+    assert_eq!(out.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["self_overlapping"], false);
+    assert_eq!(v["turning_number"], 1);
+    assert_eq!(
+        v["reason"],
+        "no triangulation of the disk by valid triangles exists"
+    );
+}

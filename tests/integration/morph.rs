@@ -1,0 +1,197 @@
+//! Morphs between pairs of reference curves: every frame an immersion
+//! (checked again here with the exact checker), endpoints reproduce the
+//! inputs, no jumps, area within the endpoints' range, and
+//! morph(A, B) = morph(B, A) reversed.
+
+use crate::util::curve;
+use immerse::Curve;
+use immerse::frames::Frame;
+use immerse::geom::Point;
+use immerse::immersion::check;
+use immerse::morph::{CurveMorphOptions, morph_curves};
+
+/// Pairs: simple ↔ simple, self-intersecting ↔ self-intersecting, simple ↔
+/// self-intersecting, and very different vertex counts.
+const PAIRS: &[(&str, &str)] = &[
+    ("triangle.json", "star-5-points.json"),
+    ("letter-E.json", "star-5-points.json"),
+    ("blob-n64.json", "letter-S-n62.json"),
+    ("comb-8-teeth.json", "annulus-sector-300deg-n40.json"),
+    ("hexagon-text-format.txt", "letter-L.svg"),
+    ("card-rotated.svg", "letter-C.svg"),
+    (
+        "spiral-strip-400deg-n30.json",
+        "circular-strip-450deg-n60.json",
+    ),
+    ("curl-strip-n10.json", "spiral-strip-400deg-n30.json"),
+    ("immersed-disk-n20.json", "immersed-disk-n40.json"),
+    (
+        "spiral-strip-540deg-n120.json",
+        "spiral-strip-capped-450deg-n92.json",
+    ),
+    ("ribbon-curl.svg", "tail-loop.svg"),
+    ("ring-wrap-400deg.svg", "folded-ribbon.svg"),
+    (
+        "immersed-disk-n80.json",
+        "spiral-strip-540deg-n120-clockwise.json",
+    ),
+    ("letter-S-n62.json", "spiral-strip-400deg-n30.json"),
+    ("blob-n64.json", "ribbon-curl.svg"),
+    ("comb-8-teeth.json", "tail-loop.svg"),
+    ("letter-C.svg", "circular-strip-450deg-n60.json"),
+    ("triangle.json", "spiral-strip-720deg-n200.json"),
+    ("star-5-points.json", "immersed-disk-n80.json"),
+    (
+        "degenerate-repeated-points-square.json",
+        "ring-wrap-400deg.svg",
+    ),
+    ("annulus-sector-300deg-n40.json", "curl-strip-n10.json"),
+    ("hexagon-text-format.txt", "spiral-strip-1080deg-n400.json"),
+];
+
+fn load(name: &str) -> Curve {
+    Curve::from_path(curve(name)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn fractions(k: usize) -> Vec<f64> {
+    (0..k).map(|i| i as f64 / (k - 1) as f64).collect()
+}
+
+fn diag(points: &[Point]) -> f64 {
+    let lo = points
+        .iter()
+        .copied()
+        .fold(Point::splat(f64::INFINITY), Point::min);
+    let hi = points
+        .iter()
+        .copied()
+        .fold(Point::splat(f64::NEG_INFINITY), Point::max);
+    (hi - lo).length()
+}
+
+fn area(f: &Frame) -> f64 {
+    f.total_area()
+}
+
+/// `frame` holds `curve`'s vertices in cyclic order starting at `shift`,
+/// every other vertex lying on the edge between the originals
+/// around it.
+fn reproduces(frame: &[Point], curve: &[Point], shift: usize) {
+    let n = frame.len();
+    let m = curve.len();
+    let mut j = 0;
+    let mut last_original = None;
+    for i in 0..n {
+        let p = frame[(i + shift) % n];
+        if j < m && p == curve[j] {
+            last_original = Some(j);
+            j += 1;
+        } else {
+            let a = last_original.map_or(curve[m - 1], |k| curve[k]);
+            let b = curve[j % m];
+            // Inserted at a + t (b - a), rounded to f64: on the edge to
+            // within rounding.
+            let e = b - a;
+            let off = e.perp_dot(p - a).abs() / e.length();
+            assert!(
+                off <= 1e-12 * e.length(),
+                "inserted vertex {i} is {off} off its edge"
+            );
+            let t = (p - a).dot(e) / e.length_squared();
+            assert!(t > 0.0 && t < 1.0, "inserted vertex {i} outside its edge");
+        }
+    }
+    assert_eq!(j, m, "only {j} of {m} original vertices found in order");
+}
+
+#[test]
+fn reference_pairs_morph_with_every_frame_an_immersion() {
+    assert!(PAIRS.len() >= 20);
+    let options = CurveMorphOptions::DEFAULT;
+    for &(sa, sb) in PAIRS {
+        let (a, b) = (load(sa), load(sb));
+        // 40 displacement-timed frames.
+        let (report, m40) = morph_curves(&a.points, &b.points, &fractions(40), &options)
+            .unwrap_or_else(|e| panic!("{sa} -> {sb}: {e}"));
+        assert_eq!(m40.frames.len(), 40);
+        for f in &m40.frames {
+            assert_eq!(f.points.len(), report.n);
+            if let Err(e) = check(&f.points, &f.triangles) {
+                panic!("{sa} -> {sb} at t = {}: {e}", f.t);
+            }
+        }
+        reproduces(&m40.frames[0].points, &a.points, 0);
+        // The last frame is the target, re-indexed by the shift.
+        let last = &m40.frames[39].points;
+        let n = last.len();
+        let unshifted: Vec<Point> = (0..n).map(|i| last[(i + n - report.shift) % n]).collect();
+        reproduces(&unshifted, &b.points, 0);
+        // No jumps: a vertex moves at most a quarter of the diagonal.
+        let d = diag(&a.points).max(diag(&b.points));
+        for w in m40.frames.windows(2) {
+            let step = w[0]
+                .points
+                .iter()
+                .zip(&w[1].points)
+                .map(|(p, q)| (*p - *q).length())
+                .fold(0.0, f64::max);
+            assert!(
+                step <= 0.25 * d,
+                "{sa} -> {sb}: a vertex moved {step} (diagonal {d})"
+            );
+        }
+        // Total area stays within the endpoints' range.
+        let (a0, a1) = (area(&m40.frames[0]), area(&m40.frames[39]));
+        let (lo, hi) = (a0.min(a1), a0.max(a1));
+        for f in &m40.frames {
+            let x = area(f);
+            assert!(
+                x >= lo * (1.0 - 1e-9) && x <= hi * (1.0 + 1e-9),
+                "{sa} -> {sb}: area {x} outside [{lo}, {hi}] at t = {}",
+                f.t
+            );
+        }
+        // 400 dense values.
+        let (_, m400) = morph_curves(&a.points, &b.points, &fractions(400), &options).unwrap();
+        for f in &m400.frames {
+            assert!(
+                check(&f.points, &f.triangles).is_ok(),
+                "{sa} -> {sb} dense t = {}",
+                f.t
+            );
+        }
+    }
+}
+
+#[test]
+fn morph_backwards_is_the_same_sequence_reversed() {
+    let options = CurveMorphOptions::DEFAULT;
+    for &(sa, sb) in PAIRS {
+        let (a, b) = (load(sa), load(sb));
+        let fr = fractions(41);
+        let (ra, ab) = morph_curves(&a.points, &b.points, &fr, &options).unwrap();
+        let (rb, ba) = morph_curves(&b.points, &a.points, &fr, &options).unwrap();
+        assert_eq!((ra.u_star, ra.v_star), (rb.v_star, rb.u_star), "{sa} {sb}");
+        assert_eq!(ra.flips, rb.flips);
+        let n = ra.n;
+        let k = ra.shift;
+        assert_eq!(
+            (k + rb.shift) % n,
+            0,
+            "{sa} {sb}: shifts {k} and {}",
+            rb.shift
+        );
+        let tol = 1e-9 * diag(&a.points).max(diag(&b.points));
+        let last = ab.frames.len() - 1;
+        for (j, f) in ab.frames.iter().enumerate() {
+            let g = &ba.frames[last - j];
+            for i in 0..n {
+                let (p, q) = (f.points[i], g.points[(i + k) % n]);
+                assert!(
+                    (p - q).length() <= tol,
+                    "{sa} {sb}: frame {j} vertex {i}: {p} vs {q}"
+                );
+            }
+        }
+    }
+}

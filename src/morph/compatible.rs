@@ -430,9 +430,15 @@ pub fn lay_out(
     angles: &[[f64; 3]],
 ) -> Result<Vec<Point>, crate::tree::TreeError> {
     let tree = DualTree::new(n, triangles)?;
-    let rooted = tree.rooted(0);
+    Ok(lay_out_rooted(&tree.rooted(0), triangles, angles))
+}
+
+/// [`lay_out`] from a given rooting of the dual tree (a root near the
+/// tree's centre keeps the propagation depth, and so the rounding, small).
+pub fn lay_out_rooted(rooted: &Rooted, triangles: &[[u32; 3]], angles: &[[f64; 3]]) -> Vec<Point> {
+    let n = triangles.len() + 2;
     let mut pos = vec![Point::ZERO; n];
-    let [x0, y0] = rooted.base[0].map(|v| v as usize);
+    let [x0, y0] = rooted.base[rooted.root].map(|v| v as usize);
     pos[x0] = Point::ZERO;
     pos[y0] = Point::X;
     for &tri in &rooted.order {
@@ -447,7 +453,7 @@ pub fn lay_out(
         let e = pos[y] - pos[x];
         pos[w] = pos[x] + Point::from_angle(ax).rotate(e) * (ay.sin() / aw.sin());
     }
-    Ok(pos)
+    pos
 }
 
 #[cfg(test)]

@@ -32,7 +32,12 @@ pub struct CurveMorphOptions {
     pub morph: MorphOptions,
     /// How vertex counts are equalised. Default: [`Counts::Insert`].
     pub counts: Counts,
-    /// How vertices are matched. Default: [`Correspondence::Shape`].
+    /// The intermediate of incompatible morphs. Default:
+    /// [`Intermediate::Target`].
+    pub intermediate: Intermediate,
+    /// How vertices are matched. Default: [`Correspondence::MinFlips`]
+    /// (measured best with the target route on the reference pairs; see
+    /// docs/incompatible-morph.md).
     pub correspondence: Correspondence,
 }
 
@@ -42,7 +47,8 @@ impl CurveMorphOptions {
         quality: Quality::Delaunay,
         morph: MorphOptions::DEFAULT,
         counts: Counts::Insert,
-        correspondence: Correspondence::Shape,
+        correspondence: Correspondence::MinFlips,
+        intermediate: Intermediate::Target,
     };
 
     /// Sets the triangulation quality.
@@ -54,6 +60,12 @@ impl CurveMorphOptions {
     /// Sets the morph options.
     pub fn with_morph(mut self, morph: MorphOptions) -> Self {
         self.morph = morph;
+        self
+    }
+
+    /// Sets the intermediate of incompatible morphs.
+    pub fn with_intermediate(mut self, intermediate: Intermediate) -> Self {
+        self.intermediate = intermediate;
         self
     }
 
@@ -137,6 +149,27 @@ pub fn triangulate_side(
         .map_err(|reason| CurveMorphError::NotSelfOverlapping { side, reason })
 }
 
+/// The intermediate that staged flips happen on the way to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Intermediate {
+    /// A valid shape that looks like the other curve (DESIGN.md §7a):
+    /// overlaps extend instead of unwinding.
+    #[default]
+    Target,
+    /// A convex disk with the curve's area (seed 004 §6.2, DESIGN.md §7).
+    Disk,
+}
+
+impl Intermediate {
+    /// The CLI name.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Intermediate::Target => "target",
+            Intermediate::Disk => "disk",
+        }
+    }
+}
+
 /// How vertex `i` of the source is matched to a vertex of the target
 /// (after equalising counts): a cyclic shift chosen by one of these rules.
 /// Every rule is symmetric, so swapping the curves gives the opposite
@@ -149,20 +182,20 @@ pub enum Correspondence {
     Pivot,
     /// The shift with the fewest crossings between the two triangulations
     /// (fewest flips); ties go to the shapes' best geometric match.
+    #[default]
     MinFlips,
     /// The shift that best matches the shapes themselves: least sum of
     /// squared distances between matched vertices after normalising
     /// position and size.
-    #[default]
     Shape,
 }
 
 impl Correspondence {
     /// All rules, in CLI order.
     pub const ALL: [Correspondence; 4] = [
-        Correspondence::Shape,
         Correspondence::MinFlips,
         Correspondence::Pivot,
+        Correspondence::Shape,
         Correspondence::Identity,
     ];
 
@@ -254,13 +287,29 @@ pub struct MorphReport {
     pub shift: usize,
     /// Flips on the side used.
     pub flips: usize,
-    /// Where the source's side reached the target's triangulation (0 when
-    /// no flip was needed, 1 at the disk).
+    /// Where the source's side reached the target's triangulation: on the
+    /// disk route the disk parameter (0 when no flip was needed, 1 at the
+    /// disk); on the target route the number of re-targeted legs.
     pub u_star: f64,
     /// The same from the target's side.
     pub v_star: f64,
     /// The side whose path was used.
     pub used: Side,
+    /// Local unblocks on the side used (target route).
+    pub unblocks: usize,
+    /// True when the side used needed the disk (always for the disk
+    /// route; a fallback for the target route).
+    pub used_disk: bool,
+}
+
+fn min_angle(points: &[Point], tris: &[[u32; 3]]) -> f64 {
+    tris.iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| points[v as usize]);
+            let [x, y, z] = crate::geom::polygon::triangle_angles(a, b, c);
+            x.min(y).min(z)
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Morphs curve `a` into curve `b` (both oriented, turning number +1).
@@ -293,28 +342,49 @@ pub fn morph_curves(
     let a_in_b: Vec<Point> = (0..n).map(|j| a[(j + n - k) % n]).collect();
     let ta_in_b = shift_triangles(n, &ta, (n - k) % n);
     let m = &options.morph;
-    let side_a = Staged::new(&a, &ta, &b_in_a, &tb_in_a, m.path, m.root, m.fan_margin)?;
-    let side_b = Staged::new(&b, &tb, &a_in_b, &ta_in_b, m.path, m.root, m.fan_margin)?;
+    let floor = 0.25 * min_angle(&a, &ta).min(min_angle(&b, &tb));
+    let side = |s: &[Point], t: &[[u32; 3]], o: &[Point], to: &[[u32; 3]]| {
+        Staged::new(
+            s,
+            t,
+            o,
+            to,
+            m.path,
+            m.root,
+            m.fan_margin,
+            options.intermediate,
+            floor,
+        )
+    };
+    let side_a = side(&a, &ta, &b_in_a, &tb_in_a)?;
+    let side_b = side(&b, &tb, &a_in_b, &ta_in_b)?;
     let lex = |p: &[Point]| -> Vec<u64> {
         p.iter()
             .flat_map(|q| [q.x.to_bits(), q.y.to_bits()])
             .collect()
     };
-    let use_a = match side_a.u_star.total_cmp(&side_b.u_star) {
+    // The disk route compares where each side reaches the other
+    // triangulation (seed 004); the target route compares path lengths.
+    let (ka, kb) = match options.intermediate {
+        Intermediate::Disk => (side_a.u_star, side_b.u_star),
+        Intermediate::Target => (side_a.path_length(), side_b.path_length()),
+    };
+    let use_a = match ka.total_cmp(&kb) {
         std::cmp::Ordering::Less => true,
         std::cmp::Ordering::Greater => false,
         std::cmp::Ordering::Equal => lex(&a) <= lex(&b),
     };
-    let report = |used: Side, flips: usize| MorphReport {
+    let report = |used: Side, chosen: &Staged| MorphReport {
         n,
         shift: k,
-        flips,
+        flips: chosen.flips,
         u_star: side_a.u_star,
         v_star: side_b.u_star,
         used,
+        unblocks: chosen.unblocks,
+        used_disk: chosen.used_disk,
     };
     if use_a {
-        let flips = side_a.flips;
         let mut side = side_a.clone();
         let (frames, fallback) = side.frames(fractions)?;
         let path = if fallback {
@@ -323,7 +393,7 @@ pub fn morph_curves(
             m.path
         };
         Ok((
-            report(Side::Source, flips),
+            report(Side::Source, &side_a),
             Morph {
                 path,
                 fallback,
@@ -331,7 +401,6 @@ pub fn morph_curves(
             },
         ))
     } else {
-        let flips = side_b.flips;
         let mut side = side_b.clone();
         let back: Vec<f64> = fractions.iter().rev().map(|f| 1.0 - f).collect();
         let (frames, fallback) = side.frames(&back)?;
@@ -350,7 +419,7 @@ pub fn morph_curves(
             m.path
         };
         Ok((
-            report(Side::Target, flips),
+            report(Side::Target, &side_b),
             Morph {
                 path,
                 fallback,

@@ -37,14 +37,14 @@ const DENSE_PER_UNIT: f64 = 256.0;
 /// One stretch of the path: a compatible morph under a fixed
 /// triangulation, used for its local parameter in `[0, s_end]`.
 #[derive(Clone, Debug)]
-struct Leg {
-    plan: Compatible,
-    path: ThirdVertexPath,
-    s_end: f64,
+pub(crate) struct Leg {
+    pub(crate) plan: Compatible,
+    pub(crate) path: ThirdVertexPath,
+    pub(crate) s_end: f64,
     /// Global u at the start and end of the leg (the final leg to the other
     /// curve spans [u*, u* + 1] by convention).
-    u0: f64,
-    u1: f64,
+    pub(crate) u0: f64,
+    pub(crate) u1: f64,
 }
 
 impl Leg {
@@ -61,11 +61,17 @@ impl Leg {
 /// A staged path from one curve to another.
 #[derive(Clone, Debug)]
 pub struct Staged {
-    legs: Vec<Leg>,
-    /// Global u at which the other triangulation was reached.
+    pub(crate) legs: Vec<Leg>,
+    /// Where the other triangulation was reached: for the disk route the
+    /// disk parameter u ∈ [0, 1]; for the target route the number of
+    /// re-targeted legs it took.
     pub u_star: f64,
     /// Flips applied.
     pub flips: usize,
+    /// Local unblocks used (target route).
+    pub unblocks: usize,
+    /// True when the target route had to fall back to the disk.
+    pub used_disk: bool,
 }
 
 /// The disk of DESIGN.md §7: vertices on a circle spaced in proportion to
@@ -109,7 +115,7 @@ fn flip_ok(p: &[Point], quad: [u32; 4], floor: f64) -> bool {
 
 /// Builds the staged path from `s` (triangulated by `t_start`) to `other`
 /// (triangulated by `t_goal`, in the same labels).
-fn stage(
+pub(crate) fn stage(
     s: &[Point],
     t_start: &[[u32; 3]],
     other: &[Point],
@@ -195,6 +201,8 @@ fn stage(
         legs,
         u_star,
         flips: flips.len(),
+        unblocks: 0,
+        used_disk: true,
     })
 }
 
@@ -205,6 +213,10 @@ impl Staged {
     /// # Errors
     ///
     /// [`MorphError`] when a compatible leg cannot be set up (a bug).
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the inputs of one side of the morph"
+    )]
     pub fn new(
         s: &[Point],
         t_start: &[[u32; 3]],
@@ -213,13 +225,20 @@ impl Staged {
         final_path: ThirdVertexPath,
         root: RootChoice,
         margin: f64,
+        intermediate: super::Intermediate,
+        floor: f64,
     ) -> Result<Staged, MorphError> {
         let goal = if check(other, t_start).is_ok() {
             t_start
         } else {
             t_other
         };
-        stage(s, t_start, other, goal, final_path, root, margin)
+        match intermediate {
+            super::Intermediate::Disk => stage(s, t_start, other, goal, final_path, root, margin),
+            super::Intermediate::Target => super::target::stage_target(
+                s, t_start, other, goal, final_path, root, margin, floor,
+            ),
+        }
     }
 
     /// The end of the path's parameter range.
@@ -280,25 +299,40 @@ impl Staged {
         }
     }
 
-    fn sample(&self, fractions: &[f64]) -> Vec<Frame> {
+    /// Total path length: the sum over dense samples of the largest vertex
+    /// move.
+    pub fn path_length(&self) -> f64 {
+        let (_, cum) = self.dense();
+        *cum.last().unwrap_or(&0.0)
+    }
+
+    /// Dense parameter samples and the cumulative largest vertex move.
+    fn dense(&self) -> (Vec<f64>, Vec<f64>) {
         let u_end = self.u_end();
-        // Dense samples: every leg boundary plus an even grid.
         let mut us: Vec<f64> = self.legs.iter().map(|l| l.u0).collect();
         us.push(u_end);
         let dense = (u_end * DENSE_PER_UNIT).ceil().max(16.0) as usize;
         us.extend((0..=dense).map(|i| u_end * i as f64 / dense as f64));
         us.sort_by(f64::total_cmp);
         us.dedup();
-        let pos: Vec<Vec<Point>> = us.iter().map(|&u| self.at(u).0).collect();
         let mut cum = vec![0.0f64; us.len()];
+        let mut prev = self.at(us[0]).0;
         for i in 1..us.len() {
-            let step = pos[i]
+            let cur = self.at(us[i]).0;
+            let step = cur
                 .iter()
-                .zip(&pos[i - 1])
+                .zip(&prev)
                 .map(|(a, b)| (*a - *b).length())
                 .fold(0.0, f64::max);
             cum[i] = cum[i - 1] + step;
+            prev = cur;
         }
+        (us, cum)
+    }
+
+    fn sample(&self, fractions: &[f64]) -> Vec<Frame> {
+        let u_end = self.u_end();
+        let (us, cum) = self.dense();
         let total = *cum.last().unwrap_or(&0.0);
         fractions
             .iter()
@@ -355,6 +389,8 @@ mod tests {
             ThirdVertexPath::Hybrid,
             RootChoice::Disk,
             0.05,
+            crate::morph::Intermediate::Disk,
+            0.0,
         )
         .unwrap();
         let fr: Vec<f64> = (0..=400).map(|i| i as f64 / 400.0).collect();

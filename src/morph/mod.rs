@@ -6,14 +6,18 @@ mod curves;
 pub mod flips;
 mod incompatible;
 mod paths;
+mod target;
 
-pub use compatible::{Compatible, CompatibleError, DEFAULT_FAN_MARGIN, area_and_centroid, lay_out};
+pub use compatible::{
+    Compatible, CompatibleError, DEFAULT_FAN_MARGIN, area_and_centroid, lay_out, lay_out_rooted,
+};
 pub use curves::{
-    Correspondence, Counts, CurveMorphError, CurveMorphOptions, MorphReport, Side, choose_shift,
-    equal_counts, morph_curves, shape_cost_per_shift, triangulate_side,
+    Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, MorphReport, Side,
+    choose_shift, equal_counts, morph_curves, shape_cost_per_shift, triangulate_side,
 };
 pub use incompatible::{SCHEDULE_STEP, Staged, disk_for};
 pub use paths::ThirdVertexPath;
+pub use target::{TARGET_FAN_MARGIN, TARGET_MIN_ANGLE};
 
 use crate::frames::{Frame, Morph};
 use crate::tree::RootChoice;

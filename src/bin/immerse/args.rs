@@ -170,15 +170,24 @@ pub(crate) enum CountsArg {
     Resample,
 }
 
+/// The intermediate of incompatible morphs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum IntermediateArg {
+    /// A valid shape that looks like the other curve: overlaps extend instead of unwinding.
+    Target,
+    /// A convex disk with the curve's area (the seed paper's route).
+    Disk,
+}
+
 /// How the vertices of the two curves are matched.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum CorrespondenceArg {
-    /// The cyclic shift that best matches the shapes themselves.
-    Shape,
     /// The cyclic shift with the fewest edge flips between the triangulations.
     MinFlips,
     /// Match the pivot vertices of the two triangulations (seed paper §6.1).
     Pivot,
+    /// The cyclic shift that best matches the shapes themselves.
+    Shape,
     /// Vertex 0 matches vertex 0.
     Identity,
 }
@@ -202,8 +211,15 @@ pub(crate) struct MorphArgs {
     /// How vertex counts are matched.
     #[arg(long, value_enum, default_value_t = CountsArg::Insert)]
     pub(crate) counts: CountsArg,
+    /// Where incompatible curves change triangulation on the way.
+    ///
+    /// When the two curves' triangulations differ, edges are flipped while
+    /// the shape moves toward an intermediate: `target` (a valid shape
+    /// resembling the other curve) or `disk` (a convex disk).
+    #[arg(long, value_enum, default_value_t = IntermediateArg::Target)]
+    pub(crate) intermediate: IntermediateArg,
     /// How vertices of the two curves are matched.
-    #[arg(long, value_enum, default_value_t = CorrespondenceArg::Shape)]
+    #[arg(long, value_enum, default_value_t = CorrespondenceArg::MinFlips)]
     pub(crate) correspondence: CorrespondenceArg,
     /// Timing of the frames: linear, ease-in, ease-out, ease-in-out or
     /// cubic-bezier(x1,y1,x2,y2).

@@ -2,13 +2,13 @@
 
 use super::{plain_points, progress_bar};
 use crate::Outcome;
-use crate::args::{CorrespondenceArg, CountsArg, FormatArg, MorphArgs, PathArg};
+use crate::args::{CorrespondenceArg, CountsArg, FormatArg, IntermediateArg, MorphArgs, PathArg};
 use crate::output;
 use anyhow::Context;
 use immerse::frames::{Morph, metrics};
 use immerse::morph::{
-    Correspondence, Counts, CurveMorphError, CurveMorphOptions, MorphOptions, ThirdVertexPath,
-    morph_curves,
+    Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, MorphOptions,
+    ThirdVertexPath, morph_curves,
 };
 use immerse::{Curve, Quality};
 use immerse_render as render;
@@ -65,6 +65,10 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
             CountsArg::Resample => Counts::Resample,
         })
         .with_correspondence(args.correspondence.into())
+        .with_intermediate(match args.intermediate {
+            IntermediateArg::Target => Intermediate::Target,
+            IntermediateArg::Disk => Intermediate::Disk,
+        })
         .with_morph(MorphOptions::DEFAULT.with_path(args.path.into()));
     let (report, morph) = match morph_curves(&src.points, &dst.points, &times, &options) {
         Ok(done) => done,
@@ -106,13 +110,18 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
             })
         };
         output::print(&format!(
-            "vertices             {} (shift {}, {} flips on the {} side; u* {:.3}, v* {:.3})\npath                 {}{}\nframes               {} ({} valid)\narea rank (AR)       {}\narea variance (Var)  {}\nminimum angle        {:.4}° (inputs {:.4}°)\nballooning           {:.4}\nsmallest area share  {}",
+            "vertices             {} (shift {}, {} flips on the {} side; u* {:.3}, v* {:.3}{})\npath                 {}{}\nframes               {} ({} valid)\narea rank (AR)       {}\narea variance (Var)  {}\nminimum angle        {:.4}° (inputs {:.4}°)\nballooning           {:.4}\nsmallest area share  {}",
             report.n,
             report.shift,
             report.flips,
             report.used,
             report.u_star,
             report.v_star,
+            if report.used_disk {
+                "; used the disk"
+            } else {
+                ""
+            },
             morph.path,
             if morph.fallback { " (fallback)" } else { "" },
             m.frames,

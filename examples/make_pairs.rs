@@ -8,32 +8,35 @@
 //! SVG flattened and flipped). Two kinds of target:
 //!
 //! - **similarity**: the source rotated, scaled and translated;
-//! - **deformation**: the source's Delaunay immersion triangulation
-//!   (`triangulate_with(.., Quality::Delaunay)`) with every triangle's three
+//! - **deformation**: an immersion triangulation T of the source (Delaunay
+//!   for most pairs; the DP witness `any` or `maxmin` for the pairs named
+//!   `*-on-any` / `*-on-maxmin`, so that every quality has pairs it applies
+//!   to) with every triangle's three
 //!   angles multiplied by random factors exp(s·u), u uniform in [−1, 1],
 //!   renormalised to sum π, blended toward the source's angles just enough
 //!   that every vertex fan sum is at most 2π − min(0.05, (2π − S_src(v))/2)
 //!   (S_src(v) the source's fan sum at v), laid out again along the dual
 //!   tree with [`immerse::morph::lay_out`] and fitted by a similarity
 //!   (least-squares rotation, then √area and area centroid of the source).
-//!   The source's Delaunay triangulation is an immersion of the target by
-//!   construction.
+//!   T is an immersion of the target by construction.
 //!
 //! Every written target is checked: it reads back with the same point
 //! count, it is self-overlapping (`triangulate_with(.., Delaunay)` succeeds)
-//! and the source's Delaunay triangulation passes the exact
-//! [`immerse::immersion::check`] on it. The run fails otherwise.
+//! and T (Delaunay for similarity pairs) passes the exact
+//! [`immerse::immersion::check`] on it. The run fails otherwise. The table
+//! printed lists, per pair, which qualities' source triangulations are
+//! immersions of the target.
 
 use std::f64::consts::{PI, TAU};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use immerse::Curve;
 use immerse::geom::Point;
 use immerse::geom::polygon::triangle_angles;
 use immerse::immersion::check;
 use immerse::morph::{area_and_centroid, lay_out};
 use immerse::quality::{Quality, triangulate_with};
-use immerse::Curve;
 
 /// Seed of the deformations (xorshift64).
 const SEED: u64 = 0x1d2c_3b4a_5968_7788;
@@ -51,8 +54,9 @@ enum Kind {
         dx: f64,
         dy: f64,
     },
-    /// Random angle factors exp(s·u), u uniform in [−1, 1].
-    Deformation { strength: f64 },
+    /// Random angle factors exp(s·u), u uniform in [−1, 1], applied to the
+    /// source's triangulation of quality `on`.
+    Deformation { strength: f64, on: Quality },
 }
 
 /// The pairs: (pair name, source file in `curves/`, kind).
@@ -92,37 +96,82 @@ fn pairs() -> Vec<(&'static str, &'static str, Kind)> {
         (
             "blob-deformation",
             "blob-n64.json",
-            Deformation { strength: 0.5 },
+            Deformation {
+                strength: 1.5,
+                on: Quality::Delaunay,
+            },
         ),
         (
             "letter-S-deformation",
             "letter-S-n62.json",
-            Deformation { strength: 0.5 },
+            Deformation {
+                strength: 1.5,
+                on: Quality::Delaunay,
+            },
         ),
         (
             "comb-deformation",
             "comb-8-teeth.json",
-            Deformation { strength: 0.5 },
+            Deformation {
+                strength: 1.5,
+                on: Quality::Delaunay,
+            },
         ),
         (
             "circular-strip-450-deformation",
             "circular-strip-450deg-n60.json",
-            Deformation { strength: 0.5 },
+            Deformation {
+                strength: 1.5,
+                on: Quality::Delaunay,
+            },
         ),
         (
             "spiral-540-deformation",
             "spiral-strip-540deg-n120.json",
-            Deformation { strength: 0.4 },
+            Deformation {
+                strength: 1.2,
+                on: Quality::Delaunay,
+            },
         ),
         (
             "immersed-disk-40-deformation",
             "immersed-disk-n40.json",
-            Deformation { strength: 0.5 },
+            Deformation {
+                strength: 1.5,
+                on: Quality::Delaunay,
+            },
         ),
         (
             "ribbon-curl-deformation",
             "ribbon-curl.svg",
-            Deformation { strength: 0.5 },
+            Deformation {
+                strength: 1.5,
+                on: Quality::Delaunay,
+            },
+        ),
+        (
+            "letter-S-deformation-on-any",
+            "letter-S-n62.json",
+            Deformation {
+                strength: 1.5,
+                on: Quality::Any,
+            },
+        ),
+        (
+            "circular-strip-450-deformation-on-any",
+            "circular-strip-450deg-n60.json",
+            Deformation {
+                strength: 1.5,
+                on: Quality::Any,
+            },
+        ),
+        (
+            "comb-deformation-on-maxmin",
+            "comb-8-teeth.json",
+            Deformation {
+                strength: 1.5,
+                on: Quality::MaxMin,
+            },
         ),
     ]
 }
@@ -233,13 +282,17 @@ fn main() {
     let out_dir: PathBuf = root.join("curves").join("pairs");
     std::fs::create_dir_all(&out_dir).unwrap();
     let mut rng = Rng(SEED);
-    println!("| pair | source | n | kind | simple (src/dst) | check of T_delaunay(src) on dst |");
+    println!("| pair | source | n | kind | simple (src/dst) | T_q(src) valid on dst |");
     println!("|---|---|---:|---|---|---|");
     for (name, file, kind) in pairs() {
         let curve = Curve::from_path(root.join("curves").join(file))
             .unwrap_or_else(|e| panic!("{file}: {e}"));
         let src = curve.points.clone();
-        let tri = triangulate_with(&src, Quality::Delaunay)
+        let on = match kind {
+            Kind::Similarity { .. } => Quality::Delaunay,
+            Kind::Deformation { on, .. } => on,
+        };
+        let tri = triangulate_with(&src, on)
             .unwrap_or_else(|e| panic!("{file} is not self-overlapping: {e}"))
             .triangles;
         let (dst, kind_s) = match kind {
@@ -252,9 +305,9 @@ fn main() {
                 similarity(&src, angle, scale, dx, dy),
                 format!("similarity (rotate {angle}°, scale {scale})"),
             ),
-            Kind::Deformation { strength } => (
+            Kind::Deformation { strength, .. } => (
                 deform(&src, &tri, strength, &mut rng),
-                format!("deformation (s = {strength})"),
+                format!("deformation of T_{on} (s = {strength})"),
             ),
         };
         let src_path = out_dir.join(format!("{name}.source.json"));
@@ -273,13 +326,23 @@ fn main() {
         let ok = check(&b.points, &tri);
         assert!(
             ok.is_ok(),
-            "{name}: the source's Delaunay triangulation fails on the target: {ok:?}"
+            "{name}: the source's {on} triangulation fails on the target: {ok:?}"
         );
         println!(
-            "| {name} | {file} | {} | {kind_s} | {}/{} | ok |",
+            "| {name} | {file} | {} | {kind_s} | {}/{} | {} |",
             src.len(),
             a.is_simple(),
-            b.is_simple()
+            b.is_simple(),
+            Quality::ALL
+                .into_iter()
+                .filter(|&q| triangulate_with(&src, q).is_ok_and(|imm| check(
+                    &b.points,
+                    &imm.triangles
+                )
+                .is_ok()))
+                .map(Quality::as_str)
+                .collect::<Vec<_>>()
+                .join(", ")
         );
     }
 }

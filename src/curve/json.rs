@@ -52,3 +52,32 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
     }
     Ok(RawCurve { name, points: out })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn coordinates_are_read_correctly_rounded() {
+        // Shortest round-trip digits (as Rust, ryu and serde_json write
+        // them) that serde_json's default fast float parser reads one ulp
+        // off; exact predicates on the curve depend on every bit.
+        let (x, y) = (1.292406097716038_f64, -0.049643602872603276_f64);
+        let json = format!("[[0, 0], [{x:?}, {y:?}], [1, 1]]");
+        let raw = parse(json.as_bytes(), "t.json").unwrap();
+        assert_eq!(raw.points[1].0.x.to_bits(), x.to_bits());
+        assert_eq!(raw.points[1].0.y.to_bits(), y.to_bits());
+        // And everything serde_json writes reads back bit for bit.
+        let pts: Vec<[f64; 2]> = (1..500)
+            .map(|i| {
+                let a = f64::from(i) * 0.7311;
+                [a.sin() * 1.7e3 / 3.0, a.cos() / 7.0]
+            })
+            .collect();
+        let text = serde_json::to_string(&pts).unwrap();
+        let raw = parse(text.as_bytes(), "t.json").unwrap();
+        for (p, q) in raw.points.iter().zip(&pts) {
+            assert_eq!([p.0.x.to_bits(), p.0.y.to_bits()], q.map(f64::to_bits));
+        }
+    }
+}

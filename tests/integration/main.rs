@@ -1,12 +1,10 @@
 //! Integration tests: one binary made of modules (see Cargo.toml,
 //! `autotests = false`).
-#![allow(
-    unreachable_pub,
-    reason = "items of a test binary are reachable only inside it"
-)]
+#![allow(unreachable_pub, reason = "items of a test binary are reachable only inside it")]
 
 mod cli;
 mod curves;
 mod immersion;
 mod morph;
+mod pairs;
 mod util;

@@ -112,7 +112,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     .sum::<f64>()
                     / d;
                 println!(
-                    "| {a} → {b} | {} | {} | {} | {} | {:.3} | {:.3} | {} | {:.3} | {:.3} | {:.2} | {:.1} |",
+                    "| {a} → {b} | {} | {} | {} | {} | {:.3} | {:.3} | {} | {:.3} | {:.3} | {:.2} | {:.3} | {:.1} |",
                     report.n,
                     route.as_str(),
                     rule.as_str(),
@@ -123,6 +123,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     m.min_angle_deg,
                     m.endpoint_min_angle_deg,
                     length,
+                    m.ballooning,
                     ms
                 );
                 angles.push(m.min_angle_deg);

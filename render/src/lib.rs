@@ -64,7 +64,8 @@ pub use easing::{Easing, frame_times};
 pub use error::RenderError;
 pub use frame::Frame;
 pub use output::{
-    Loop, Output, frame_file_name, prepare_output_dir, write_atomic, write_gif, write_png_sequence,
+    Loop, Output, contact_sheet, frame_file_name, prepare_output_dir, write_atomic,
+    write_contact_sheet, write_gif, write_png_sequence,
 };
 pub use raster::{encode_png, render};
 pub use style::{Rgba, Style};

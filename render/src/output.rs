@@ -394,3 +394,86 @@ mod tests {
         assert!("bounce".parse::<Loop>().is_err());
     }
 }
+
+/// Renders `frames` side by side into one image, `columns` per row (0
+/// means one row), each cell `style.width` × `style.height`, all with one
+/// shared [`View`]: a contact sheet for comparing in-betweens at a glance.
+///
+/// # Errors
+///
+/// [`RenderError::NoFrames`], a size error (also when the whole sheet is
+/// too large), or a frame's error.
+pub fn contact_sheet(
+    frames: &[Frame],
+    style: &Style,
+    columns: usize,
+) -> Result<tiny_skia::Pixmap, RenderError> {
+    if frames.is_empty() {
+        return Err(RenderError::NoFrames);
+    }
+    style.check_size()?;
+    let cols = if columns == 0 {
+        frames.len()
+    } else {
+        columns.min(frames.len())
+    };
+    let rows = frames.len().div_ceil(cols);
+    let (w, h) = (style.width, style.height);
+    let too_large = || RenderError::ImageTooLarge {
+        width: w.saturating_mul(cols as u32),
+        height: h.saturating_mul(rows as u32),
+        reason: "a contact sheet is limited to Style::MAX_PIXELS; use fewer frames or a smaller --size",
+    };
+    let (sw, sh) = (
+        u32::try_from(cols)
+            .ok()
+            .and_then(|c| w.checked_mul(c))
+            .ok_or_else(too_large)?,
+        u32::try_from(rows)
+            .ok()
+            .and_then(|r| h.checked_mul(r))
+            .ok_or_else(too_large)?,
+    );
+    if u64::from(sw) * u64::from(sh) > Style::MAX_PIXELS {
+        return Err(too_large());
+    }
+    let mut sheet = tiny_skia::Pixmap::new(sw, sh).ok_or_else(too_large)?;
+    let view = View::fit(frames, style);
+    let ghosts = onion(frames, style);
+    let cells: Vec<tiny_skia::Pixmap> = frames
+        .par_iter()
+        .enumerate()
+        .map(|(i, f)| render(f, &view, style, &ghosts).map_err(|e| e.in_frame(i)))
+        .collect::<Result<_, _>>()?;
+    for (i, cell) in cells.iter().enumerate() {
+        let (x, y) = ((i % cols) as u32 * w, (i / cols) as u32 * h);
+        sheet.draw_pixmap(
+            x as i32,
+            y as i32,
+            cell.as_ref(),
+            &tiny_skia::PixmapPaint::default(),
+            tiny_skia::Transform::identity(),
+            None,
+        );
+    }
+    Ok(sheet)
+}
+
+/// Writes [`contact_sheet`] as a PNG with [`write_atomic`].
+///
+/// # Errors
+///
+/// As [`contact_sheet`] and [`write_atomic`].
+pub fn write_contact_sheet(
+    frames: &[Frame],
+    path: &Path,
+    style: &Style,
+    columns: usize,
+    opts: &Output,
+) -> Result<(), RenderError> {
+    if !opts.force && std::fs::symlink_metadata(path).is_ok() {
+        return Err(RenderError::FileExists { path: path.into() });
+    }
+    let sheet = contact_sheet(frames, style, columns)?;
+    write_atomic(path, &encode_png(&sheet)?, opts.force)
+}

@@ -508,3 +508,34 @@ fn easing_properties() {
         "{err}"
     );
 }
+
+#[test]
+fn contact_sheet_places_each_frame_in_its_cell() {
+    let frames = squares(5);
+    let style = plain_style();
+    let sheet = immerse_render::contact_sheet(&frames, &style, 3).unwrap();
+    // Three columns, two rows of 100 × 100 cells.
+    assert_eq!((sheet.width(), sheet.height()), (300, 200));
+    // Each cell matches the frame rendered alone with the shared view.
+    let view = View::fit(&frames, &style);
+    for (i, f) in frames.iter().enumerate() {
+        let alone = render(f, &view, &style, &[]).unwrap();
+        let (cx, cy) = ((i % 3) as u32 * 100, (i / 3) as u32 * 100);
+        for (x, y) in [(50, 50), (10, 10), (90, 50)] {
+            let a = alone.pixel(x, y).unwrap();
+            let b = sheet.pixel(cx + x, cy + y).unwrap();
+            assert_eq!(a, b, "frame {i} at ({x}, {y})");
+        }
+    }
+    // The empty sixth cell stays transparent.
+    assert_eq!(sheet.pixel(250, 150).unwrap().alpha(), 0);
+    assert!(matches!(
+        immerse_render::contact_sheet(&[], &style, 3),
+        Err(RenderError::NoFrames)
+    ));
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("sheet.png");
+    immerse_render::write_contact_sheet(&frames, &path, &style, 0, &Output::DEFAULT).unwrap();
+    let again = immerse_render::write_contact_sheet(&frames, &path, &style, 0, &Output::DEFAULT);
+    assert!(matches!(again, Err(RenderError::FileExists { .. })));
+}

@@ -1,6 +1,9 @@
 //! Integration tests: one binary made of modules (see Cargo.toml,
 //! `autotests = false`).
-#![allow(unreachable_pub, reason = "items of a test binary are reachable only inside it")]
+#![allow(
+    unreachable_pub,
+    reason = "items of a test binary are reachable only inside it"
+)]
 
 mod cli;
 mod curves;

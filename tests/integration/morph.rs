@@ -195,3 +195,47 @@ fn morph_backwards_is_the_same_sequence_reversed() {
         }
     }
 }
+
+#[test]
+fn the_disk_route_is_valid_and_symmetric_too() {
+    use immerse::morph::Intermediate;
+    let options = CurveMorphOptions::DEFAULT.with_intermediate(Intermediate::Disk);
+    for &(sa, sb) in PAIRS {
+        let (a, b) = (load(sa), load(sb));
+        let (ra, ab) = morph_curves(&a.points, &b.points, &fractions(400), &options).unwrap();
+        assert!(ra.used_disk);
+        for f in &ab.frames {
+            assert!(
+                check(&f.points, &f.triangles).is_ok(),
+                "{sa} -> {sb} t = {}",
+                f.t
+            );
+        }
+        let (_, ba) = morph_curves(&b.points, &a.points, &fractions(400), &options).unwrap();
+        let (n, k) = (ra.n, ra.shift);
+        let tol = 1e-9 * diag(&a.points).max(diag(&b.points));
+        for (j, f) in ab.frames.iter().enumerate() {
+            let g = &ba.frames[ab.frames.len() - 1 - j];
+            for i in 0..n {
+                assert!(
+                    (f.points[i] - g.points[(i + k) % n]).length() <= tol,
+                    "{sa} {sb}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn the_target_route_needs_no_disk_on_the_reference_pairs() {
+    let options = CurveMorphOptions::DEFAULT;
+    let mut disk = Vec::new();
+    for &(sa, sb) in PAIRS {
+        let (a, b) = (load(sa), load(sb));
+        let (r, _) = morph_curves(&a.points, &b.points, &fractions(10), &options).unwrap();
+        if r.used_disk {
+            disk.push((sa, sb));
+        }
+    }
+    assert!(disk.is_empty(), "needed the disk: {disk:?}");
+}

@@ -159,6 +159,8 @@ pub(crate) enum FormatArg {
     Svg,
     /// One animated SVG file (SMIL).
     AnimatedSvg,
+    /// One PNG with every frame side by side (a contact sheet).
+    Sheet,
 }
 
 /// How vertex counts are matched.
@@ -237,7 +239,8 @@ pub(crate) struct MorphArgs {
     #[arg(short, long, value_name = "PATH")]
     pub(crate) output: Option<PathBuf>,
     /// Image format; by default taken from the -o extension (.gif, .svg
-    /// for animated SVG) and png for a folder.
+    /// for animated SVG, .png for a contact sheet) and png frames for a
+    /// folder.
     #[arg(long, value_enum)]
     pub(crate) format: Option<FormatArg>,
     /// Image size in pixels, WIDTHxHEIGHT.

@@ -153,6 +153,7 @@ pub(crate) fn write_images(args: &MorphArgs, out: &Path, morph: &Morph) -> anyho
     let format = args.format.unwrap_or(match ext.as_deref() {
         Some("gif") => FormatArg::Gif,
         Some("svg") => FormatArg::AnimatedSvg,
+        Some("png") => FormatArg::Sheet,
         _ => FormatArg::Png,
     });
     let frames: Vec<render::Frame> = morph
@@ -209,6 +210,7 @@ pub(crate) fn write_frames(
         FormatArg::AnimatedSvg => {
             render::write_animated_svg(frames, out, style, fps, looping, &opts)?;
         }
+        FormatArg::Sheet => render::write_contact_sheet(frames, out, style, 0, &opts)?,
     }
     bar.finish_and_clear();
     Ok(())

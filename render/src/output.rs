@@ -371,30 +371,6 @@ pub(crate) fn check_fps(fps: f64) -> Result<(), RenderError> {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn names_are_padded() {
-        assert_eq!(frame_file_name(7, 120, "png"), "frame_0007.png");
-        assert_eq!(frame_file_name(7, 10_001, "svg"), "frame_00007.svg");
-        assert_eq!(frame_file_name(0, 0, "png"), "frame_0000.png");
-    }
-
-    #[test]
-    fn sequences() {
-        assert_eq!(Loop::PingPong.sequence(1), vec![0]);
-        assert_eq!(Loop::PingPong.sequence(2), vec![0, 1]);
-        assert_eq!(Loop::PingPong.sequence(3), vec![0, 1, 2, 1]);
-        assert_eq!(Loop::Loop.sequence(3), vec![0, 1, 2]);
-        for l in [Loop::Once, Loop::Loop, Loop::PingPong] {
-            assert_eq!(l.to_string().parse::<Loop>().unwrap(), l);
-        }
-        assert!("bounce".parse::<Loop>().is_err());
-    }
-}
-
 /// Renders `frames` side by side into one image, `columns` per row (0
 /// means one row), each cell `style.width` × `style.height`, all with one
 /// shared [`View`]: a contact sheet for comparing in-betweens at a glance.
@@ -476,4 +452,28 @@ pub fn write_contact_sheet(
     }
     let sheet = contact_sheet(frames, style, columns)?;
     write_atomic(path, &encode_png(&sheet)?, opts.force)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_padded() {
+        assert_eq!(frame_file_name(7, 120, "png"), "frame_0007.png");
+        assert_eq!(frame_file_name(7, 10_001, "svg"), "frame_00007.svg");
+        assert_eq!(frame_file_name(0, 0, "png"), "frame_0000.png");
+    }
+
+    #[test]
+    fn sequences() {
+        assert_eq!(Loop::PingPong.sequence(1), vec![0]);
+        assert_eq!(Loop::PingPong.sequence(2), vec![0, 1]);
+        assert_eq!(Loop::PingPong.sequence(3), vec![0, 1, 2, 1]);
+        assert_eq!(Loop::Loop.sequence(3), vec![0, 1, 2]);
+        for l in [Loop::Once, Loop::Loop, Loop::PingPong] {
+            assert_eq!(l.to_string().parse::<Loop>().unwrap(), l);
+        }
+        assert!("bounce".parse::<Loop>().is_err());
+    }
 }

@@ -151,3 +151,40 @@ fn bounds(points: &[Point]) -> (Point, Point) {
         |(lo, hi), &p| (lo.min(p), hi.max(p)),
     )
 }
+
+/// Every row of the table in `curves/README.md` is what the readers and
+/// the exact DP compute, and every curve file has a row.
+#[test]
+fn the_curves_readme_table_is_reproduced() {
+    let text = std::fs::read_to_string(curves_dir().join("README.md")).unwrap();
+    let mut rows = 0;
+    for line in text.lines().filter(|l| l.starts_with("| `")) {
+        let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+        let file = cells[1].trim_matches('`');
+        let (so, simple, n, turning) = (cells[2], cells[3], cells[4], cells[5]);
+        match Curve::from_path(curve(file)) {
+            Err(e) => assert_eq!(so, "invalid", "{file}: {e}"),
+            Ok(c) => {
+                let verdict = immerse::immersion::triangulate(&c.points).is_ok();
+                assert_eq!(so, if verdict { "yes" } else { "no" }, "{file}");
+                assert_eq!(simple, if c.is_simple() { "yes" } else { "no" }, "{file}");
+                assert_eq!(n, c.len().to_string(), "{file}");
+                let t = c
+                    .turning_number_as_given()
+                    .map_or("-".to_string(), |k| k.to_string());
+                assert_eq!(turning, t, "{file}");
+            }
+        }
+        rows += 1;
+    }
+    let files = std::fs::read_dir(curves_dir())
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| {
+            let name = e.file_name().to_string_lossy().into_owned();
+            name != "MANIFEST.json" && [".json", ".txt", ".svg"].iter().any(|x| name.ends_with(x))
+        })
+        .count();
+    assert_eq!(rows, files, "every curve file has one row");
+    assert!(rows >= 25);
+}

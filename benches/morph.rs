@@ -1,0 +1,65 @@
+//! Criterion benchmarks of frame generation: one frame of the compatible
+//! propagation morph per path at n = 1,000 and 10,000 vertices, and the
+//! end-to-end curve morph (triangulation, both flip sides, 60 checked
+//! frames) at n = 100 and 400.
+//!
+//! Run `cargo bench --bench morph` (filter with e.g. `-- frame/hybrid`).
+
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use immerse::Point;
+use immerse::morph::{Compatible, CurveMorphOptions, ThirdVertexPath, morph_curves};
+use immerse::tree::RootChoice;
+use std::f64::consts::TAU;
+use std::hint::black_box;
+
+/// A spiral strip of `m` stations and its zigzag triangulation (n = 2m).
+fn spiral_strip(m: usize, turns: f64, width: f64) -> (Vec<Point>, Vec<[u32; 3]>) {
+    let station = |i: usize| {
+        let th = turns * TAU * i as f64 / (m - 1) as f64;
+        (th, 1.0 + 0.12 * th / TAU)
+    };
+    let mut pts: Vec<Point> = (0..m)
+        .map(|i| {
+            let (th, r) = station(i);
+            Point::from_angle(th) * (r + width / 2.0)
+        })
+        .collect();
+    pts.extend((0..m).rev().map(|i| {
+        let (th, r) = station(i);
+        Point::from_angle(th) * (r - width / 2.0)
+    }));
+    let n = 2 * m as u32;
+    let tris = (0..(m as u32 - 1))
+        .flat_map(|i| [[i, i + 1, n - 1 - i], [i + 1, n - 2 - i, n - 1 - i]])
+        .collect();
+    (pts, tris)
+}
+
+fn frames(c: &mut Criterion) {
+    let mut g = c.benchmark_group("frame");
+    for n in [1_000usize, 10_000] {
+        let (a, tris) = spiral_strip(n / 2, 1.6, 0.05);
+        let (b, _) = spiral_strip(n / 2, 0.6, 0.05);
+        let plan = Compatible::new(&a, &b, &tris, RootChoice::Disk, 0.05).expect("valid pair");
+        for path in ThirdVertexPath::ALL {
+            g.bench_with_input(BenchmarkId::new(path.as_str(), n), &plan, |bench, plan| {
+                bench.iter(|| black_box(plan.positions(0.37, path)))
+            });
+        }
+    }
+    g.finish();
+    let mut g = c.benchmark_group("curves");
+    g.sample_size(10);
+    for m in [50usize, 200] {
+        let (a, _) = spiral_strip(m, 1.4, 0.3);
+        let (b, _) = spiral_strip(m, 0.7, 0.3);
+        let fr: Vec<f64> = (0..60).map(|i| f64::from(i) / 59.0).collect();
+        g.bench_function(BenchmarkId::from_parameter(2 * m), |bench| {
+            bench.iter(|| black_box(morph_curves(&a, &b, &fr, &CurveMorphOptions::DEFAULT).is_ok()))
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, frames);
+criterion_main!(benches);

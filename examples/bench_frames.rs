@@ -1,0 +1,88 @@
+//! Frame generation speed: vertices × frames per second for the
+//! compatible propagation morph (every path) and for the incompatible
+//! morph end to end. Prints a markdown table of medians.
+//!
+//! Run with `cargo run --release --example bench_frames`.
+
+use immerse::Point;
+use immerse::morph::{Compatible, CurveMorphOptions, ThirdVertexPath, morph_curves};
+use immerse::tree::RootChoice;
+use std::f64::consts::TAU;
+use std::time::Instant;
+
+/// A spiral strip of `m` stations curling `turns` times and its zigzag
+/// triangulation (outer edge forward, inner edge back): an immersed disk
+/// for any number of turns, with n = 2m vertices.
+fn spiral_strip(m: usize, turns: f64, width: f64) -> (Vec<Point>, Vec<[u32; 3]>) {
+    let station = |i: usize| {
+        let th = turns * TAU * i as f64 / (m - 1) as f64;
+        (th, 1.0 + 0.12 * th / TAU)
+    };
+    let mut pts = Vec::with_capacity(2 * m);
+    for i in 0..m {
+        let (th, r) = station(i);
+        pts.push(Point::from_angle(th) * (r + width / 2.0));
+    }
+    for i in (0..m).rev() {
+        let (th, r) = station(i);
+        pts.push(Point::from_angle(th) * (r - width / 2.0));
+    }
+    let n = 2 * m as u32;
+    let mut tris = Vec::new();
+    for i in 0..(m as u32 - 1) {
+        tris.push([i, i + 1, n - 1 - i]);
+        tris.push([i + 1, n - 2 - i, n - 1 - i]);
+    }
+    (pts, tris)
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    println!("## Compatible morph: frames per second (median of 5 runs of 200 frames)\n");
+    println!("| vertices | path | ms per frame | frames/s | target |");
+    println!("|---|---|---|---|---|");
+    for n in [1_000usize, 10_000] {
+        let (a, tris) = spiral_strip(n / 2, 1.6, 0.05);
+        let (b, _) = spiral_strip(n / 2, 0.6, 0.05);
+        let plan = Compatible::new(&a, &b, &tris, RootChoice::Disk, 0.05)?;
+        for path in ThirdVertexPath::ALL {
+            let runs: Vec<f64> = (0..5)
+                .map(|_| {
+                    let start = Instant::now();
+                    let mut sink = 0.0;
+                    for i in 1..=200 {
+                        let p = plan.positions(i as f64 / 201.0, path);
+                        sink += p[n / 2].x;
+                    }
+                    std::hint::black_box(sink);
+                    start.elapsed().as_secs_f64() / 200.0
+                })
+                .collect();
+            let s = median(runs);
+            let target = if n == 10_000 { "> 1,000 frames/s" } else { "" };
+            println!("| {n} | {path} | {:.3} | {:.0} | {target} |", s * 1e3, 1.0 / s);
+        }
+    }
+    println!("\n## End to end (`morph_curves`, triangulation + both sides + 60 checked frames; median of 3)\n");
+    println!("| vertices | time (ms) |");
+    println!("|---|---|");
+    for m in [25usize, 50, 100, 200] {
+        let (a, _) = spiral_strip(m, 1.4, 0.3);
+        let (b, _) = spiral_strip(m, 0.7, 0.3);
+        let fr: Vec<f64> = (0..60).map(|i| i as f64 / 59.0).collect();
+        let runs: Vec<f64> = (0..3)
+            .map(|_| {
+                let start = Instant::now();
+                let out = morph_curves(&a, &b, &fr, &CurveMorphOptions::DEFAULT);
+                std::hint::black_box(out.is_ok());
+                start.elapsed().as_secs_f64()
+            })
+            .collect();
+        println!("| {} | {:.1} |", 2 * m, median(runs) * 1e3);
+    }
+    Ok(())
+}

@@ -64,10 +64,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 .collect();
             let s = median(runs);
             let target = if n == 10_000 { "> 1,000 frames/s" } else { "" };
-            println!("| {n} | {path} | {:.3} | {:.0} | {target} |", s * 1e3, 1.0 / s);
+            println!(
+                "| {n} | {path} | {:.3} | {:.0} | {target} |",
+                s * 1e3,
+                1.0 / s
+            );
         }
     }
-    println!("\n## End to end (`morph_curves`, triangulation + both sides + 60 checked frames; median of 3)\n");
+    println!(
+        "\n## End to end (`morph_curves`, triangulation + both sides + 60 checked frames; median of 3)\n"
+    );
     println!("| vertices | time (ms) |");
     println!("|---|---|");
     for m in [25usize, 50, 100, 200] {

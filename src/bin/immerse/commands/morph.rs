@@ -57,6 +57,16 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
     }
     let src = Curve::from_path(&args.source)?;
     let dst = Curve::from_path(&args.target)?;
+    if !args.quiet {
+        for (c, path) in [(&src, &args.source), (&dst, &args.target)] {
+            if c.reversed {
+                output::note(&format!(
+                    "{} is drawn clockwise; reversed it to counter-clockwise (frames follow the reversed order)",
+                    path.display()
+                ));
+            }
+        }
+    }
     let times = render::frame_times(args.frames as usize, &easing);
     let options = CurveMorphOptions::DEFAULT
         .with_quality(Quality::from(args.quality))
@@ -110,13 +120,19 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
             })
         };
         output::print(&format!(
-            "vertices             {} (shift {}, {} flips on the {} side; u* {:.3}, v* {:.3}{})\npath                 {}{}\nframes               {} ({} valid)\narea rank (AR)       {}\narea variance (Var)  {}\nminimum angle        {:.4}° (inputs {:.4}°)\nballooning           {:.4}\nsmallest area share  {}",
+            "vertices             {} (shift {}, {} flips on the {} side; {}{})\npath                 {}{}\nframes               {} ({} valid)\narea rank (AR)       {}\narea variance (Var)  {}\nminimum angle        {:.4}° (inputs {:.4}°)\nballooning           {:.4}\nsmallest area share  {}",
             report.n,
             report.shift,
             report.flips,
             report.used,
-            report.u_star,
-            report.v_star,
+            match args.intermediate {
+                IntermediateArg::Disk =>
+                    format!("u* {:.3}, v* {:.3}", report.u_star, report.v_star),
+                IntermediateArg::Target => format!(
+                    "targets: {} from the source side, {} from the target side",
+                    report.u_star, report.v_star
+                ),
+            },
             if report.used_disk {
                 "; used the disk"
             } else {

@@ -7,3 +7,7 @@
 pub mod geom;
 
 pub use geom::Point;
+pub mod coords;
+pub mod mesh_morph;
+mod solve;
+pub mod tiling;

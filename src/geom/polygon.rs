@@ -148,9 +148,12 @@ pub fn first_self_intersection(points: &[Point]) -> Option<(usize, usize)> {
             let bad = if (i + 1) % n == j || (j + 1) % n == i {
                 // Adjacent: share vertex s; bad when they overlap along a
                 // line (the far end of one lies on the other).
-                let (s, p, q) = if (i + 1) % n == j { (b, a, d) } else { (a, b, c) };
-                orient(p, s, q) == Orientation::Collinear
-                    && half_plane_class(s, p, q) == Some(0)
+                let (s, p, q) = if (i + 1) % n == j {
+                    (b, a, d)
+                } else {
+                    (a, b, c)
+                };
+                orient(p, s, q) == Orientation::Collinear && half_plane_class(s, p, q) == Some(0)
             } else {
                 segments_touch(a, b, c, d)
             };

@@ -163,7 +163,10 @@ mod tests {
             assert_eq!(orient(a, b, c), orient(c, a, b));
             assert_eq!(orient(a, b, c).signum(), -orient(b, a, c).signum());
         }
-        assert_eq!(orient(p(0.0, 0.0), p(1.0, 1.0), p(3.0, 3.0)), Orientation::Collinear);
+        assert_eq!(
+            orient(p(0.0, 0.0), p(1.0, 1.0), p(3.0, 3.0)),
+            Orientation::Collinear
+        );
     }
 
     #[test]

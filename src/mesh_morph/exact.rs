@@ -247,12 +247,12 @@ mod tests {
     fn half_turn_fails_only_inside() {
         let o = p(0.0, 0.0);
         let t0 = [o, p(1.0, 0.0), p(0.0, 1.0)];
-        // cross = (1 − 2t)² − 0.01 t²: negative around t = 1/2.
-        let bad = [o, p(-1.0, 0.0), p(0.1, -1.0)];
+        // cross = (1 − 2t)² − 0.1 t²: negative around t = 1/2.
+        let bad = [o, p(-1.0, 0.1), p(1.0, -1.0)];
         let (a, b) = triangle_stays_ccw(t0, bad).unwrap_err();
         assert!(a < 0.5 && 0.5 < b, "{a} {b}");
-        // cross = (1 − 2t)² + 0.01 t² > 0 throughout.
-        let good = [o, p(-1.0, 0.0), p(-0.1, -1.0)];
+        // cross = (1 − 2t)² + 0.1 t² > 0 throughout.
+        let good = [o, p(-1.0, 0.1), p(-1.0, -1.0)];
         assert!(triangle_stays_ccw(t0, good).is_ok());
         // cross = (1 − 2t)²: touches zero at 1/2.
         let touch = [o, p(-1.0, 0.0), p(0.0, -1.0)];

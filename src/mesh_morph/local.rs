@@ -102,7 +102,7 @@ pub(crate) fn morph(
     times: &[f64],
     opts: &MeshMorphOptions,
 ) -> Result<Vec<MeshFrame>, MeshMorphError> {
-    let solver = p.weight_solver()?;
+    let mut solver = p.weight_solver()?;
     let motions: Vec<StarMotion> = p.interior.iter().map(|&v| star_motion(p, v)).collect();
     times
         .iter()
@@ -136,7 +136,7 @@ pub(crate) fn morph(
                 })
                 .collect();
             let mut pts = p.boundary_at(t);
-            p.solve_weights(&solver, &rows, &mut pts)?;
+            p.solve_weights(&mut solver, &rows, &mut pts)?;
             Ok(p.frame(t, pts))
         })
         .collect()

@@ -586,7 +586,7 @@ impl<'a> Problem<'a> {
     /// interior.
     pub(crate) fn solve_weights(
         &self,
-        solver: &SparseSolver,
+        solver: &mut SparseSolver,
         weights: &[Vec<f64>],
         points: &mut [Point],
     ) -> Result<(), MeshMorphError> {
@@ -752,7 +752,7 @@ pub fn mesh_morph(
             })
             .collect()),
         Method::Convex => {
-            let solver = problem.weight_solver()?;
+            let mut solver = problem.weight_solver()?;
             let w0 = problem.weights_of(a, opts.weights);
             let w1 = problem.weights_of(b, opts.weights);
             let wm = mid.map(|(m, tm)| (problem.weights_of(m, opts.weights), tm));
@@ -776,13 +776,13 @@ pub fn mesh_morph(
                         })
                         .collect();
                     let mut pts = problem.boundary_at(t);
-                    problem.solve_weights(&solver, &rows, &mut pts)?;
+                    problem.solve_weights(&mut solver, &rows, &mut pts)?;
                     Ok(problem.frame(t, pts))
                 })
                 .collect()
         }
         Method::Intrinsic => {
-            let solver = problem.weight_solver()?;
+            let mut solver = problem.weight_solver()?;
             let s0 = problem.angles_of(a);
             let s1 = problem.angles_of(b);
             let sm = mid.map(|(m, tm)| (problem.angles_of(m), tm));
@@ -808,7 +808,7 @@ pub fn mesh_morph(
                         })
                         .collect();
                     let mut pts = problem.boundary_at(t);
-                    problem.solve_weights(&solver, &rows, &mut pts)?;
+                    problem.solve_weights(&mut solver, &rows, &mut pts)?;
                     Ok(problem.frame(t, pts))
                 })
                 .collect()

@@ -206,7 +206,7 @@ impl PowerSystem {
     }
 
     fn solve(
-        &self,
+        &mut self,
         p: &Problem<'_>,
         coefs: &[f64],
         points: &mut [Point],
@@ -260,7 +260,7 @@ fn frames(
         mats.push(a1);
         mats.push(b1);
     }
-    let system = PowerSystem::new(p, &mats)?;
+    let mut system = PowerSystem::new(p, &mats)?;
     let mut out = Vec::with_capacity(times.len());
     for &t in times {
         let d = choice.d;

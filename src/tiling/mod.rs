@@ -293,7 +293,10 @@ pub enum TilingError {
 ///
 /// When `n < 3` (no interior vertex) or `n² > MAX_VERTICES`.
 pub fn grid_pair(n: usize, seed: u64) -> (Tiling, Tiling) {
-    assert!(n >= 3 && n * n <= MAX_VERTICES, "grid size {n} out of range");
+    assert!(
+        n >= 3 && n * n <= MAX_VERTICES,
+        "grid size {n} out of range"
+    );
     let h = 1.0 / (n - 1) as f64;
     let mut state = seed ^ 0x9E37_79B9_7F4A_7C15;
     let mut rand = move || {

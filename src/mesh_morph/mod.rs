@@ -56,7 +56,7 @@ mod exact;
 mod local;
 mod power;
 
-pub use power::{MAX_POWER_ENTRIES, PowerChoice, power_choice};
+pub use power::{MAX_POWER, MAX_POWER_ENTRIES, MAX_SAMPLES, PowerChoice, power_choice};
 
 use crate::coords::{self, Weights};
 use crate::geom::{Orientation, Point, orient};
@@ -124,14 +124,16 @@ impl std::str::FromStr for Method {
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct MeshMorphOptions {
-    /// Barycentric coordinates for `convex`, `power` and `local`. Default:
+    /// Barycentric coordinates for `convex`, `power` and `local`.
+    /// [`Weights::Uniform`] does not reproduce the vertices, so with it the
+    /// end frames are the Tutte drawings, not the inputs. Default:
     /// [`Weights::MeanValue`].
     pub weights: Weights,
     /// A fixed power `m ≥ 1` for `power` (no search, fraction
     /// [`MeshMorphOptions::power_fraction`]); `None` searches the largest
     /// valid one. Default: `None`.
     pub power: Option<u32>,
-    /// Upper limit of the power search. Default: 64.
+    /// Upper limit of the power search (at most [`MAX_POWER`]). Default: 64.
     pub max_power: u32,
     /// Fractional part `d ∈ [0, 1)` used with a fixed
     /// [`MeshMorphOptions::power`]. Default: 0.
@@ -140,7 +142,7 @@ pub struct MeshMorphOptions {
     /// 0 turns it off. Default: 8.
     pub fraction_steps: u32,
     /// Evenly spaced times, besides the requested ones, at which a `power`
-    /// candidate must be valid. Default: 32.
+    /// candidate must be valid (at most [`MAX_SAMPLES`]). Default: 32.
     pub validity_samples: usize,
     /// `local` only: improve the evolution of triangle areas (seed 003
     /// §4.3). Default: `false`.

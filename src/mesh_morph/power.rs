@@ -18,6 +18,14 @@ use crate::tiling::Tiling;
 /// search stops (bounds memory: 16 bytes per entry).
 pub const MAX_POWER_ENTRIES: usize = 20_000_000;
 
+/// Largest power the search tries, whatever [`MeshMorphOptions::max_power`]
+/// says.
+pub const MAX_POWER: u32 = 1 << 16;
+
+/// Largest number of validity samples used, whatever
+/// [`MeshMorphOptions::validity_samples`] says.
+pub const MAX_SAMPLES: usize = 4096;
+
 /// The power chosen by the `power` method.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
@@ -304,28 +312,22 @@ fn choose(
             d: opts.power_fraction,
         });
     }
-    let max = opts.max_power.max(1);
-    let ts = check_times(times, opts.validity_samples);
+    let max = opts.max_power.clamp(1, MAX_POWER);
+    let ts = check_times(times, opts.validity_samples.min(MAX_SAMPLES));
     let valid = |m: u32, d: f64| -> Result<bool, MeshMorphError> {
         Ok(frames(p, m0, m1, PowerChoice { m, d }, &ts, true)?
             .is_some_and(|f| f.iter().all(|f| f.valid)))
     };
+    // Doubling (the last step clipped to `max`), then bisection.
     let (mut lo, mut hi) = (1u32, None);
-    let mut m = 2u32;
-    while m <= max {
+    let mut m = 2u32.min(max);
+    while m > lo {
         if valid(m, 0.0)? {
             lo = m;
-            m = m.saturating_mul(2);
+            m = m.saturating_mul(2).min(max);
         } else {
             hi = Some(m);
             break;
-        }
-    }
-    if hi.is_none() && lo < max {
-        if valid(max, 0.0)? {
-            lo = max;
-        } else {
-            hi = Some(max);
         }
     }
     let Some(mut hi) = hi else {
@@ -340,7 +342,7 @@ fn choose(
         }
     }
     let (mut dlo, mut dhi) = (0.0f64, 1.0f64);
-    for _ in 0..opts.fraction_steps {
+    for _ in 0..opts.fraction_steps.min(52) {
         let mid = 0.5 * (dlo + dhi);
         if valid(lo, mid)? {
             dlo = mid;

@@ -36,7 +36,8 @@ pub(crate) const MAX_ITERATIONS: usize = 5;
 pub(crate) struct SparseSolver {
     n: usize,
     pattern: SymbolicSparseColMat<usize>,
-    symbolic: SymbolicLu<usize>,
+    /// `None` when there are no unknowns.
+    symbolic: Option<SymbolicLu<usize>>,
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
     /// For each entry in row order (as given to `new`), its CSC slot.
@@ -84,7 +85,11 @@ impl SparseSolver {
         }
         let pattern =
             SymbolicSparseColMat::new_checked(n, n, col_ptr.clone(), None, row_idx.clone());
-        let symbolic = SymbolicLu::try_new(pattern.as_ref()).map_err(|e| format!("{e:?}"))?;
+        let symbolic = if n == 0 {
+            None
+        } else {
+            Some(SymbolicLu::try_new(pattern.as_ref()).map_err(|e| format!("{e:?}"))?)
+        };
         Ok(SparseSolver {
             n,
             pattern,
@@ -120,8 +125,8 @@ impl SparseSolver {
     /// Refactors with `csc` and solves `b` directly.
     fn direct(&mut self, csc: &[f64], b: &Mat<f64>) -> Result<Mat<f64>, String> {
         let mat = SparseColMatRef::new(self.pattern.as_ref(), csc);
-        let lu =
-            Lu::try_new_with_symbolic(self.symbolic.clone(), mat).map_err(|e| format!("{e:?}"))?;
+        let lu = Lu::try_new_with_symbolic(self.symbolic.clone().ok_or("no unknowns")?, mat)
+            .map_err(|e| format!("{e:?}"))?;
         self.factorisations += 1;
         let mut x = b.clone();
         lu.solve_in_place(x.as_mut());

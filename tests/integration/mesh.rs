@@ -404,3 +404,17 @@ fn method_names_round_trip() {
     }
     assert_eq!(MeshMorphOptions::default(), MeshMorphOptions::DEFAULT);
 }
+
+#[test]
+fn tilings_without_interior_vertices_morph() {
+    let a = Tiling::from_json_str(r#"{"points": [[0,0],[1,0],[1,1],[0,1]], "faces": [[0,1,2,3]]}"#)
+        .unwrap();
+    let b = Tiling::from_json_str(r#"{"points": [[0,0],[2,0],[2,1],[0,1]], "faces": [[0,1,2,3]]}"#)
+        .unwrap();
+    for method in Method::ALL {
+        let f = mesh_morph(&a, &b, method, &times(5), &MeshMorphOptions::DEFAULT).unwrap();
+        assert!(all_valid(&f), "{method}");
+        assert!(rel_diff(&f[4].points, &b.points) < 1e-12, "{method}");
+    }
+    assert!(check_linear(&a, &b).is_valid());
+}

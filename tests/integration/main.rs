@@ -8,6 +8,7 @@
 mod cli;
 mod curves;
 mod immersion;
+mod mesh;
 mod morph;
 mod pairs;
 mod util;

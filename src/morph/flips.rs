@@ -137,7 +137,11 @@ impl FlipTriangulation {
         let (lo, hi) = key(a, c);
         // The apex strictly between lo and hi (going up) is b.
         let between = |v: u32| lo < v && v < hi;
-        let (b, d, tb, td) = if between(p) { (p, q, t0, t1) } else { (q, p, t1, t0) };
+        let (b, d, tb, td) = if between(p) {
+            (p, q, t0, t1)
+        } else {
+            (q, p, t1, t0)
+        };
         Some(([lo, b, hi, d], [tb, td]))
     }
 
@@ -301,19 +305,31 @@ mod tests {
             let target_diagonals = target.diagonals();
             let mut order: Vec<((u32, u32), usize)> = target_diagonals
                 .iter()
-                .map(|&t| (t, cur.diagonals().iter().filter(|&&s| crosses(s, t)).count()))
+                .map(|&t| {
+                    (
+                        t,
+                        cur.diagonals().iter().filter(|&&s| crosses(s, t)).count(),
+                    )
+                })
                 .collect();
             order.sort_by_key(|&(d, c)| (c, d));
             let mut total = 0;
             for ((x, y), _) in order {
                 // Crossings with (x, y) just before inserting it.
-                let before = cur.diagonals().iter().filter(|&&s| crosses(s, (x, y))).count();
+                let before = cur
+                    .diagonals()
+                    .iter()
+                    .filter(|&&s| crosses(s, (x, y)))
+                    .count();
                 let mut cost = 0;
                 while let Some((p, q)) = cur.entered(x, y) {
                     cur.flip(p, q).unwrap();
                     cost += 1;
                 }
-                assert_eq!(cost, before, "insertion of {x}-{y} cost {cost}, crossings {before}");
+                assert_eq!(
+                    cost, before,
+                    "insertion of {x}-{y} cost {cost}, crossings {before}"
+                );
                 total += cost;
             }
             assert_eq!(cur.diagonals(), target_diagonals);
@@ -325,7 +341,13 @@ mod tests {
                 assert_eq!(replay.flip(f.from.0, f.from.1), Some(*f));
             }
             assert_eq!(replay.diagonals(), target_diagonals);
-            assert!(flips.len() <= crossing_count(&FlipTriangulation::new(n, &t1).diagonals(), &target_diagonals));
+            assert!(
+                flips.len()
+                    <= crossing_count(
+                        &FlipTriangulation::new(n, &t1).diagonals(),
+                        &target_diagonals
+                    )
+            );
         }
     }
 

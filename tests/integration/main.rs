@@ -8,4 +8,5 @@
 mod cli;
 mod curves;
 mod immersion;
+mod properties;
 mod util;

@@ -5,8 +5,9 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 #[non_exhaustive]
 pub enum CurveError {
-    /// The file could not be opened or read.
-    #[error("cannot read {path}: {source}; check the path and permissions")]
+    /// The file could not be opened or read. The operating system's reason
+    /// is the error's source (the CLI prints it after a colon).
+    #[error("cannot read {path} (check the path and permissions)")]
     Io {
         /// The file.
         path: String,

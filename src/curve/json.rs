@@ -21,7 +21,8 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
         let msg = e.to_string();
         // serde_json appends " at line L column C"; we report those apart.
         let msg = msg.split(" at line ").next().unwrap_or(&msg).to_string();
-        err(e.line(), e.column(), format!("invalid JSON: {msg}"))
+        // serde_json gives column 0 at a line break; columns are 1-based.
+        err(e.line(), e.column().max(1), format!("invalid JSON: {msg}"))
     })?;
     let (name, points) = match &value {
         Value::Array(items) => (None, items),
@@ -50,7 +51,11 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
         };
         out.push((Point::new(x, y), i));
     }
-    Ok(RawCurve { name, points: out })
+    Ok(RawCurve {
+        name,
+        points: out,
+        lines: false,
+    })
 }
 
 #[cfg(test)]

@@ -124,7 +124,7 @@ impl Curve {
             Format::Svg => svg::parse(bytes, label)?,
         };
         let name = raw.name.unwrap_or_else(|| default_name.to_string());
-        clean::build(name, raw.points, label)
+        clean::build(name, raw.points, raw.lines, label)
     }
 
     /// Parses a JSON curve from a string (see the module docs for the
@@ -149,7 +149,7 @@ impl Curve {
             .enumerate()
             .map(|(i, p)| (p, i + 1))
             .collect();
-        clean::build(name.to_string(), raw, name)
+        clean::build(name.to_string(), raw, false, name)
     }
 
     /// Number of vertices.
@@ -214,6 +214,9 @@ impl Format {
 pub(crate) struct RawCurve {
     pub(crate) name: Option<String>,
     pub(crate) points: Vec<(Point, usize)>,
+    /// True when the positions are line numbers (text files); otherwise
+    /// errors count points from 0.
+    pub(crate) lines: bool,
 }
 
 #[cfg(test)]

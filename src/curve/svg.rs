@@ -91,7 +91,11 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
         .enumerate()
         .map(|(i, p)| (Point::new(p.x, -p.y), i))
         .collect();
-    Ok(RawCurve { name: None, points })
+    Ok(RawCurve {
+        name: None,
+        points,
+        lines: false,
+    })
 }
 
 /// Segments needed so that a Bézier whose second differences are bounded

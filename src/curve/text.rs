@@ -46,7 +46,11 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
         }
         points.push((p, i + 1));
     }
-    Ok(RawCurve { name: None, points })
+    Ok(RawCurve {
+        name: None,
+        points,
+        lines: true,
+    })
 }
 
 #[cfg(test)]

@@ -5,6 +5,7 @@
     reason = "items of a test binary are reachable only inside it"
 )]
 
+mod catalogue;
 mod cli;
 mod curves;
 mod immersion;

@@ -137,3 +137,17 @@ pub enum CurveError {
         count: usize,
     },
 }
+
+/// `text` with every control character escaped (`\n`, `\r`, `\t`,
+/// `\u{..}`), so that a message quoting the input stays on one line.
+pub(crate) fn one_line(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_control() {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}

@@ -22,7 +22,11 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
         // serde_json appends " at line L column C"; we report those apart.
         let msg = msg.split(" at line ").next().unwrap_or(&msg).to_string();
         // serde_json gives column 0 at a line break; columns are 1-based.
-        err(e.line(), e.column().max(1), format!("invalid JSON: {msg}"))
+        err(
+            e.line(),
+            e.column().max(1),
+            super::error::one_line(&format!("invalid JSON: {msg}")),
+        )
     })?;
     let (name, points) = match &value {
         Value::Array(items) => (None, items),

@@ -7,6 +7,7 @@
 //! to [`SVG_FLATTEN_TOLERANCE`] times the diagonal of the subpath's control
 //! polygon bounds, and y is negated (SVG is y down, immerse is y up).
 
+use super::error::one_line;
 use super::{CurveError, RawCurve};
 use crate::geom::Point;
 
@@ -30,7 +31,7 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
     let tree =
         usvg::Tree::from_data(bytes, &usvg::Options::default()).map_err(|e| CurveError::Svg {
             path: label.to_string(),
-            message: e.to_string(),
+            message: one_line(&e.to_string()),
         })?;
     let mut found = None;
     find_closed(tree.root(), &mut found);
@@ -178,5 +179,29 @@ fn find_closed(group: &usvg::Group, found: &mut Option<(Point, Vec<Seg>)>) {
             }
             _ => {}
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Regression (fuzz target `curve_svg`, seed
+    /// `fuzz/seeds/curve_svg/regression-newline-in-parser-message.svg`):
+    /// the XML parser quotes the offending character, here a line break,
+    /// which split the CLI's one-line error in two.
+    #[test]
+    fn parser_messages_stay_on_one_line() {
+        let data =
+            b"<svg xmlns=\"http://www.w3.org/2000/svg\"><path d=\"M0 0 L1 0 L0 1 Z\"/\n</svg>";
+        let e = parse(data, "s.svg").unwrap_err();
+        let msg = e.to_string();
+        assert!(matches!(e, CurveError::Svg { .. }), "{msg}");
+        assert!(!msg.contains('\n'), "{msg:?}");
+        assert!(msg.contains("\\n"), "the character is shown escaped: {msg}");
+        let crash =
+            include_bytes!("../../fuzz/seeds/curve_svg/regression-newline-in-parser-message.svg");
+        let msg = parse(crash, "c.svg").unwrap_err().to_string();
+        assert!(!msg.chars().any(char::is_control), "{msg:?}");
     }
 }

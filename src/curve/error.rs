@@ -79,6 +79,22 @@ pub enum CurveError {
         /// The parser's message.
         message: String,
     },
+    /// A number in an SVG's path data is so large that parsing the path
+    /// could take unbounded memory (an elliptical arc of huge radius is
+    /// split into ever more Bézier segments).
+    #[error(
+        "{path}:{line}: path data has a number of magnitude {value:e}, over the limit {limit:e} for SVG path data; rescale the drawing"
+    )]
+    SvgNumberTooLarge {
+        /// The file.
+        path: String,
+        /// 1-based line of the element.
+        line: u32,
+        /// The offending value.
+        value: f64,
+        /// The limit ([`crate::curve::MAX_SVG_PATH_NUMBER`]).
+        limit: f64,
+    },
     /// The SVG has no closed subpath to use as the curve.
     #[error(
         "{path}: no closed shape found; draw a closed path (ending in Z), polygon, rect, circle or ellipse"

@@ -25,7 +25,7 @@ mod text;
 
 pub use clean::{MAX_COORDINATE, MAX_POINTS, MIN_COORDINATE};
 pub use error::CurveError;
-pub use svg::SVG_FLATTEN_TOLERANCE;
+pub use svg::{MAX_SVG_PATH_NUMBER, SVG_FLATTEN_TOLERANCE};
 
 use crate::geom::Point;
 use crate::geom::polygon::{self, Turning};

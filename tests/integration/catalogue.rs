@@ -355,3 +355,29 @@ fn not_self_overlapping_is_exit_1() {
         Some(format!("{eight}: not self-overlapping (turning number is 0, not 1)").as_str())
     );
 }
+
+/// SVG input that would make the parser do unbounded work is refused
+/// before parsing (found by the `curve_svg` fuzz target).
+#[test]
+fn svg_path_numbers_too_large_and_svgz() {
+    let d = dir_with(&[
+        (
+            "arc.svg",
+            b"<svg xmlns=\"http://www.w3.org/2000/svg\">\n<path d=\"M 80 -60 A 100 5e47 0 1 0 80 60 Z\"/></svg>",
+        ),
+        ("zipped.svg", &[0x1f, 0x8b, 8, 0, 0, 0, 0, 0]),
+    ]);
+    let d = Some(d.path());
+    assert_stderr(
+        d,
+        &["check", "arc.svg"],
+        2,
+        "immerse: arc.svg:2: path data has a number of magnitude 5e47, over the limit 1e12 for SVG path data; rescale the drawing",
+    );
+    assert_stderr(
+        d,
+        &["check", "zipped.svg"],
+        2,
+        "immerse: zipped.svg: not a readable SVG: compressed SVG (svgz) is not supported; decompress it first",
+    );
+}

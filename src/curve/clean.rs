@@ -22,6 +22,7 @@ pub const MAX_POINTS: usize = 200_000;
 pub(crate) fn build(
     name: String,
     raw: Vec<(Point, usize)>,
+    lines: bool,
     label: &str,
 ) -> Result<Curve, CurveError> {
     if raw.len() > MAX_POINTS {
@@ -32,7 +33,11 @@ pub(crate) fn build(
         });
     }
     for (index, &(p, place)) in raw.iter().enumerate() {
-        let place = format!("entry {place}");
+        let place = if lines {
+            format!("line {place}")
+        } else {
+            "counting from 0".to_string()
+        };
         if !p.is_finite() {
             return Err(CurveError::NonFinite {
                 path: label.to_string(),
@@ -114,6 +119,7 @@ mod tests {
         let c = build(
             "sq".into(),
             raw(&[(0., 0.), (1., 0.), (1., 0.), (1., 1.), (0., 1.), (0., 0.)]),
+            false,
             "sq",
         )
         .unwrap();
@@ -127,6 +133,7 @@ mod tests {
         let c = build(
             "cw".into(),
             raw(&[(0., 0.), (0., 1.), (1., 1.), (1., 0.)]),
+            false,
             "cw",
         )
         .unwrap();
@@ -139,7 +146,7 @@ mod tests {
 
     #[test]
     fn rejects_degenerate_curves() {
-        let e = build("x".into(), raw(&[(0., 0.), (1., 1.), (0., 0.)]), "x").unwrap_err();
+        let e = build("x".into(), raw(&[(0., 0.), (1., 1.), (0., 0.)]), false, "x").unwrap_err();
         assert!(
             matches!(e, CurveError::TooFewPoints { distinct: 2, .. }),
             "{e}"
@@ -147,13 +154,42 @@ mod tests {
         let e = build(
             "x".into(),
             raw(&[(0., 0.), (1., 1.), (3., 3.), (2., 2.)]),
+            false,
             "x",
         )
         .unwrap_err();
         assert!(matches!(e, CurveError::ZeroArea { .. }), "{e}");
-        let e = build("x".into(), raw(&[(0., 0.), (1., f64::NAN), (3., 3.)]), "x").unwrap_err();
+        let e = build(
+            "x".into(),
+            raw(&[(0., 0.), (1., f64::NAN), (3., 3.)]),
+            false,
+            "x",
+        )
+        .unwrap_err();
         assert!(matches!(e, CurveError::NonFinite { index: 1, .. }), "{e}");
-        let e = build("x".into(), raw(&[(0., 0.), (1., 1e40), (3., 3.)]), "x").unwrap_err();
+        let e = build(
+            "x".into(),
+            raw(&[(0., 0.), (1., 1e40), (3., 3.)]),
+            false,
+            "x",
+        )
+        .unwrap_err();
         assert!(matches!(e, CurveError::OutOfRange { index: 1, .. }), "{e}");
+    }
+
+    #[test]
+    fn out_of_range_names_the_line_or_the_index() {
+        let pts = raw(&[(0., 0.), (1., 0.), (1e40, 1.)]);
+        let e = build("x".into(), pts, true, "t.txt").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "t.txt: point 2 (line 3) has a coordinate of magnitude 1e40, outside [1e-30, 1e30]; rescale the curve"
+        );
+        let pts = raw(&[(0., 0.), (f64::INFINITY, 0.), (1., 1.)]);
+        let e = build("x".into(), pts, false, "p.json").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "p.json: point 1 (counting from 0) has a non-finite coordinate; give finite numbers"
+        );
     }
 }

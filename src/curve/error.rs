@@ -5,8 +5,9 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 #[non_exhaustive]
 pub enum CurveError {
-    /// The file could not be opened or read.
-    #[error("cannot read {path}: {source}; check the path and permissions")]
+    /// The file could not be opened or read. The operating system's reason
+    /// is the error's source (the CLI prints it after a colon).
+    #[error("cannot read {path} (check the path and permissions)")]
     Io {
         /// The file.
         path: String,
@@ -78,6 +79,22 @@ pub enum CurveError {
         /// The parser's message.
         message: String,
     },
+    /// A number in an SVG's path data is so large that parsing the path
+    /// could take unbounded memory (an elliptical arc of huge radius is
+    /// split into ever more Bézier segments).
+    #[error(
+        "{path}:{line}: path data has a number of magnitude {value:e}, over the limit {limit:e} for SVG path data; rescale the drawing"
+    )]
+    SvgNumberTooLarge {
+        /// The file.
+        path: String,
+        /// 1-based line of the element.
+        line: u32,
+        /// The offending value.
+        value: f64,
+        /// The limit ([`crate::curve::MAX_SVG_PATH_NUMBER`]).
+        limit: f64,
+    },
     /// The SVG has no closed subpath to use as the curve.
     #[error(
         "{path}: no closed shape found; draw a closed path (ending in Z), polygon, rect, circle or ellipse"
@@ -135,4 +152,18 @@ pub enum CurveError {
         /// Number of points.
         count: usize,
     },
+}
+
+/// `text` with every control character escaped (`\n`, `\r`, `\t`,
+/// `\u{..}`), so that a message quoting the input stays on one line.
+pub(crate) fn one_line(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_control() {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    out
 }

@@ -21,7 +21,12 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
         let msg = e.to_string();
         // serde_json appends " at line L column C"; we report those apart.
         let msg = msg.split(" at line ").next().unwrap_or(&msg).to_string();
-        err(e.line(), e.column(), format!("invalid JSON: {msg}"))
+        // serde_json gives column 0 at a line break; columns are 1-based.
+        err(
+            e.line(),
+            e.column().max(1),
+            super::error::one_line(&format!("invalid JSON: {msg}")),
+        )
     })?;
     let (name, points) = match &value {
         Value::Array(items) => (None, items),
@@ -50,7 +55,42 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
         };
         out.push((Point::new(x, y), i));
     }
-    Ok(RawCurve { name, points: out })
+    Ok(RawCurve {
+        name,
+        points: out,
+        lines: false,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Regression (property `curve_json_round_trip`, tests/regressions):
+    /// serde_json's default float parsing may be one ULP off, so a curve
+    /// written by `immerse triangulate --json` read back as a different
+    /// curve. The `float_roundtrip` feature makes parsing exact.
+    #[test]
+    fn coordinates_read_back_bit_for_bit() {
+        let xy = [
+            [0.0, 0.0],
+            [-0.09422795889074179, 0.10480394518765569],
+            [-0.19999999999999996, -0.15],
+            [0.5, -1.5],
+            [10.0, 0.0],
+            [3.0, 9.0],
+            [std::f64::consts::PI * 1e-7, 2.0f64.sqrt() * 1e25],
+        ];
+        let text = serde_json::to_string(&xy).unwrap();
+        let raw = parse(text.as_bytes(), "rt.json").unwrap();
+        for (i, (&[x, y], (p, _))) in xy.iter().zip(&raw.points).enumerate() {
+            assert_eq!(
+                (p.x.to_bits(), p.y.to_bits()),
+                (x.to_bits(), y.to_bits()),
+                "point {i}"
+            );
+        }
+    }
 }
 
 #[cfg(test)]

@@ -25,7 +25,7 @@ mod text;
 
 pub use clean::{MAX_COORDINATE, MAX_POINTS, MIN_COORDINATE};
 pub use error::CurveError;
-pub use svg::SVG_FLATTEN_TOLERANCE;
+pub use svg::{MAX_SVG_PATH_NUMBER, SVG_FLATTEN_TOLERANCE};
 
 use crate::geom::Point;
 use crate::geom::polygon::{self, Turning};
@@ -99,6 +99,9 @@ impl Curve {
     /// Parses and cleans a curve from memory. `label` names the source in
     /// error messages; `default_name` is used when the data has no name.
     ///
+    /// Data longer than [`MAX_FILE_BYTES`] is refused before parsing, as a
+    /// file of that size would be.
+    ///
     /// # Errors
     ///
     /// As [`Curve::from_path`], except the I/O errors.
@@ -108,13 +111,20 @@ impl Curve {
         label: &str,
         default_name: &str,
     ) -> Result<Curve, CurveError> {
+        if bytes.len() as u64 > MAX_FILE_BYTES {
+            return Err(CurveError::TooLarge {
+                path: label.to_string(),
+                what: format!("{} bytes", bytes.len()),
+                limit: format!("{MAX_FILE_BYTES} bytes"),
+            });
+        }
         let raw = match format {
             Format::Json => json::parse(bytes, label)?,
             Format::Text => text::parse(bytes, label)?,
             Format::Svg => svg::parse(bytes, label)?,
         };
         let name = raw.name.unwrap_or_else(|| default_name.to_string());
-        clean::build(name, raw.points, label)
+        clean::build(name, raw.points, raw.lines, label)
     }
 
     /// Parses a JSON curve from a string (see the module docs for the
@@ -139,7 +149,7 @@ impl Curve {
             .enumerate()
             .map(|(i, p)| (p, i + 1))
             .collect();
-        clean::build(name.to_string(), raw, name)
+        clean::build(name.to_string(), raw, false, name)
     }
 
     /// Number of vertices.
@@ -204,4 +214,31 @@ impl Format {
 pub(crate) struct RawCurve {
     pub(crate) name: Option<String>,
     pub(crate) points: Vec<(Point, usize)>,
+    /// True when the positions are line numbers (text files); otherwise
+    /// errors count points from 0.
+    pub(crate) lines: bool,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn from_bytes_refuses_data_over_the_file_limit() {
+        // Valid text up front, so only the size bound can reject it.
+        let mut data = b"0 0\n1 0\n0 1\n".to_vec();
+        data.resize(MAX_FILE_BYTES as usize + 1, b' ');
+        let e = Curve::from_bytes(&data, Format::Text, "big.txt", "big").unwrap_err();
+        assert!(matches!(e, CurveError::TooLarge { .. }), "{e}");
+        assert_eq!(
+            e.to_string(),
+            format!(
+                "big.txt: too large ({} bytes; the limit is {MAX_FILE_BYTES} bytes); simplify the curve first",
+                MAX_FILE_BYTES + 1
+            )
+        );
+        data.truncate(MAX_FILE_BYTES as usize);
+        let c = Curve::from_bytes(&data, Format::Text, "big.txt", "big").unwrap();
+        assert_eq!(c.len(), 3);
+    }
 }

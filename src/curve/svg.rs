@@ -7,6 +7,7 @@
 //! to [`SVG_FLATTEN_TOLERANCE`] times the diagonal of the subpath's control
 //! polygon bounds, and y is negated (SVG is y down, immerse is y up).
 
+use super::error::one_line;
 use super::{CurveError, RawCurve};
 use crate::geom::Point;
 
@@ -19,6 +20,14 @@ pub const SVG_FLATTEN_TOLERANCE: f64 = 1e-3;
 /// malformed file cannot ask for unbounded work.
 const MAX_SEGMENTS_PER_CURVE: usize = 256;
 
+/// Largest magnitude of a number in SVG path data (`d` attributes). The
+/// SVG parser turns an elliptical arc into cubic Béziers at a fixed
+/// absolute tolerance, so their count grows with the radius: at 1e50 a
+/// 300-byte file asked for gigabytes (found by the `curve_svg` fuzz
+/// target). At 1e12 an arc needs at most a few hundred segments, and no
+/// drawing comes near it.
+pub const MAX_SVG_PATH_NUMBER: f64 = 1e12;
+
 #[derive(Clone, Copy)]
 enum Seg {
     Line(Point),
@@ -27,10 +36,11 @@ enum Seg {
 }
 
 pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
+    screen(bytes, label)?;
     let tree =
         usvg::Tree::from_data(bytes, &usvg::Options::default()).map_err(|e| CurveError::Svg {
             path: label.to_string(),
-            message: e.to_string(),
+            message: one_line(&e.to_string()),
         })?;
     let mut found = None;
     find_closed(tree.root(), &mut found);
@@ -91,7 +101,105 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
         .enumerate()
         .map(|(i, p)| (Point::new(p.x, -p.y), i))
         .collect();
-    Ok(RawCurve { name: None, points })
+    Ok(RawCurve {
+        name: None,
+        points,
+        lines: false,
+    })
+}
+
+/// Refuses, before usvg sees them, inputs that would make it do unbounded
+/// work: gzip-compressed data (a decompression bomb) and path data with a
+/// number over [`MAX_SVG_PATH_NUMBER`]. Data that is not UTF-8 or not XML
+/// is left for usvg to report.
+fn screen(bytes: &[u8], label: &str) -> Result<(), CurveError> {
+    if bytes.starts_with(&[0x1f, 0x8b]) {
+        return Err(CurveError::Svg {
+            path: label.to_string(),
+            message: "compressed SVG (svgz) is not supported; decompress it first".to_string(),
+        });
+    }
+    let Ok(text) = std::str::from_utf8(bytes) else {
+        return Ok(());
+    };
+    let options = roxmltree::ParsingOptions {
+        allow_dtd: true,
+        ..roxmltree::ParsingOptions::default()
+    };
+    let Ok(doc) = roxmltree::Document::parse_with_options(text, options) else {
+        return Ok(());
+    };
+    for node in doc.descendants().filter(roxmltree::Node::is_element) {
+        for attr in node.attributes() {
+            if attr.name() != "d" {
+                continue;
+            }
+            if let Some(value) = largest_number(attr.value())
+                && value > MAX_SVG_PATH_NUMBER
+            {
+                return Err(CurveError::SvgNumberTooLarge {
+                    path: label.to_string(),
+                    line: doc.text_pos_at(node.range().start).row,
+                    value,
+                    limit: MAX_SVG_PATH_NUMBER,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The largest magnitude among the numbers in SVG path data (NaN-free;
+/// `None` when there are none). Reads a number as greedily as SVG's
+/// grammar allows, so it never under-reads: flags written without
+/// separators may be read together with what follows, which can only
+/// over-estimate.
+fn largest_number(data: &str) -> Option<f64> {
+    let b = data.as_bytes();
+    let digits = |mut i: usize| {
+        while i < b.len() && b[i].is_ascii_digit() {
+            i += 1;
+        }
+        i
+    };
+    let mut best: Option<f64> = None;
+    let mut i = 0;
+    while i < b.len() {
+        let start = i;
+        if b[i] == b'+' || b[i] == b'-' {
+            i += 1;
+        }
+        let int_end = digits(i);
+        let mut end = int_end;
+        let mut frac_digits = false;
+        if end < b.len() && b[end] == b'.' {
+            end = digits(end + 1);
+            frac_digits = end > int_end + 1;
+        }
+        if int_end == i && !frac_digits {
+            // No digits: not a number; move on.
+            i = start + 1;
+            continue;
+        }
+        if end < b.len() && (b[end] == b'e' || b[end] == b'E') {
+            let mut e = end + 1;
+            if e < b.len() && (b[e] == b'+' || b[e] == b'-') {
+                e += 1;
+            }
+            let e_end = digits(e);
+            if e_end > e {
+                end = e_end;
+            }
+        }
+        if let Ok(v) = data[start..end].parse::<f64>() {
+            let v = v.abs();
+            if !v.is_nan() {
+                best = Some(best.map_or(v, |m: f64| m.max(v)));
+            }
+        }
+        i = end.max(start + 1);
+    }
+    best
 }
 
 /// Segments needed so that a Bézier whose second differences are bounded
@@ -174,5 +282,72 @@ fn find_closed(group: &usvg::Group, found: &mut Option<(Point, Vec<Seg>)>) {
             }
             _ => {}
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Regression (fuzz target `curve_svg`, seed
+    /// `fuzz/seeds/curve_svg/regression-newline-in-parser-message.svg`):
+    /// the XML parser quotes the offending character, here a line break,
+    /// which split the CLI's one-line error in two.
+    #[test]
+    fn parser_messages_stay_on_one_line() {
+        let data =
+            b"<svg xmlns=\"http://www.w3.org/2000/svg\"><path d=\"M0 0 L1 0 L0 1 Z\"/\n</svg>";
+        let e = parse(data, "s.svg").unwrap_err();
+        let msg = e.to_string();
+        assert!(matches!(e, CurveError::Svg { .. }), "{msg}");
+        assert!(!msg.contains('\n'), "{msg:?}");
+        assert!(msg.contains("\\n"), "the character is shown escaped: {msg}");
+        let crash =
+            include_bytes!("../../fuzz/seeds/curve_svg/regression-newline-in-parser-message.svg");
+        let msg = parse(crash, "c.svg").unwrap_err().to_string();
+        assert!(!msg.chars().any(char::is_control), "{msg:?}");
+    }
+
+    #[test]
+    fn largest_number_reads_path_data_greedily() {
+        assert_eq!(largest_number("M0 0 L5 5 Z"), Some(5.0));
+        assert_eq!(largest_number("M-7.5-2e3.5 .25"), Some(2e3));
+        assert_eq!(largest_number("M1e 2E+2"), Some(200.0));
+        assert_eq!(largest_number("A10 10 0 1120 20"), Some(1120.0));
+        assert_eq!(largest_number("M . - + e"), None);
+        assert_eq!(largest_number("M0 1e999"), Some(f64::INFINITY));
+        assert_eq!(largest_number(""), None);
+    }
+
+    /// Regression (fuzz target `curve_svg`, seed
+    /// `fuzz/seeds/curve_svg/regression-oom-huge-arc-radius.svg`): an arc
+    /// of radius 5e47 in a 327-byte file made the SVG parser allocate
+    /// gigabytes. It is refused up front, naming the line.
+    #[test]
+    fn huge_arc_radius_is_refused_before_parsing() {
+        let crash = include_bytes!("../../fuzz/seeds/curve_svg/regression-oom-huge-arc-radius.svg");
+        let e = parse(crash, "arc.svg").unwrap_err();
+        assert!(
+            matches!(e, CurveError::SvgNumberTooLarge { line: 3, .. }),
+            "{e}"
+        );
+        let small = br#"<svg xmlns="http://www.w3.org/2000/svg"><path d="M 80 -60 A 100 100 0 1 0 80 60 Z"/></svg>"#;
+        let raw = parse(small, "arc.svg").unwrap();
+        assert!(raw.points.len() > 8, "an arc is flattened");
+        let big = br#"<svg xmlns="http://www.w3.org/2000/svg">
+<path d="M 80 -60 A 100 2e12 0 1 0 80 60 Z"/></svg>"#;
+        assert_eq!(
+            parse(big, "arc.svg").unwrap_err().to_string(),
+            "arc.svg:2: path data has a number of magnitude 2e12, over the limit 1e12 for SVG path data; rescale the drawing"
+        );
+    }
+
+    #[test]
+    fn compressed_svg_is_refused() {
+        let e = parse(&[0x1f, 0x8b, 8, 0, 0, 0], "z.svg").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "z.svg: not a readable SVG: compressed SVG (svgz) is not supported; decompress it first"
+        );
     }
 }

@@ -1,6 +1,7 @@
 //! Text curves: one `x y` pair per line, separated by whitespace or a
 //! comma; `#` starts a comment; blank lines are skipped.
 
+use super::error::one_line;
 use super::{CurveError, RawCurve};
 use crate::geom::Point;
 
@@ -26,7 +27,7 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
         let bad = |message: String| CurveError::Text {
             path: label.to_string(),
             line: i + 1,
-            message,
+            message: one_line(&message),
         };
         if fields.len() != 2 {
             return Err(bad(format!(
@@ -46,7 +47,11 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
         }
         points.push((p, i + 1));
     }
-    Ok(RawCurve { name: None, points })
+    Ok(RawCurve {
+        name: None,
+        points,
+        lines: true,
+    })
 }
 
 #[cfg(test)]
@@ -62,6 +67,17 @@ mod tests {
             vec![Point::new(0., 0.), Point::new(1., 0.), Point::new(1., 1.)]
         );
         assert_eq!(r.points[2].1, 5);
+    }
+
+    /// Regression (fuzz target `curve_text` hardening): a carriage return
+    /// or tab inside a line is escaped, so the message stays on one line.
+    #[test]
+    fn control_characters_are_escaped_in_messages() {
+        let e = parse(b"0 0\n1\r2\t3\n", "t.txt").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "t.txt:2: expected two numbers 'x y', found 3 field(s) in '1\\r2\\t3'"
+        );
     }
 
     #[test]

@@ -36,6 +36,7 @@ pub(crate) mod valid;
 pub use check::{ImmersionDefect, check};
 pub use valid::is_valid_triangle;
 
+use crate::curve::{MAX_COORDINATE, MIN_COORDINATE};
 use crate::geom::Point;
 use crate::geom::polygon::{Turning, triangle_angles, turning_number};
 
@@ -86,13 +87,29 @@ pub enum NotSelfOverlapping {
     /// exists; also returned for fewer than 3 points.
     #[error("no triangulation of the disk by valid triangles exists")]
     NoValidTriangulation,
+    /// A coordinate of this point is NaN, infinite, or of a magnitude
+    /// outside [`MIN_COORDINATE`, `MAX_COORDINATE`] (zero is fine), where
+    /// the exact predicates could overflow or underflow, so no answer could
+    /// be trusted. A [`crate::Curve`] never has such points.
+    #[error(
+        "point {0} has a coordinate that is not finite or outside the range [1e-30, 1e30] where the predicates are exact; rescale the points"
+    )]
+    OutOfRange(usize),
 }
 
-/// Check the preconditions shared by every triangulator: at least 3 points
-/// and turning number exactly +1.
+/// Check the preconditions shared by every triangulator: at least 3 points,
+/// every coordinate in the predicates' exact range, and turning number
+/// exactly +1.
 pub(crate) fn precheck(points: &[Point]) -> Result<(), NotSelfOverlapping> {
     if points.len() < 3 {
         return Err(NotSelfOverlapping::NoValidTriangulation);
+    }
+    let in_range = |v: f64| v == 0.0 || (MIN_COORDINATE..=MAX_COORDINATE).contains(&v.abs());
+    if let Some(i) = points
+        .iter()
+        .position(|p| !(in_range(p.x) && in_range(p.y)))
+    {
+        return Err(NotSelfOverlapping::OutOfRange(i));
     }
     match turning_number(points) {
         Turning::Number(1) => Ok(()),
@@ -113,7 +130,8 @@ pub(crate) fn precheck(points: &[Point]) -> Result<(), NotSelfOverlapping> {
 ///
 /// [`NotSelfOverlapping`]: fewer than 3 points or no valid triangulation
 /// ([`NotSelfOverlapping::NoValidTriangulation`]), a turning number other
-/// than 1, or a cusp.
+/// than 1, a cusp, or a coordinate outside the exact range
+/// ([`NotSelfOverlapping::OutOfRange`]).
 pub fn triangulate(points: &[Point]) -> Result<Immersion, NotSelfOverlapping> {
     triangulate_progress(points, &mut |_| {})
 }
@@ -255,6 +273,31 @@ mod tests {
         assert_eq!(
             triangulate(&[o, x, Point::new(0.0, -1.0)]),
             Err(NotSelfOverlapping::TurningNumber(-1))
+        );
+    }
+
+    /// Regression (fuzz target `check_points`, seed
+    /// `fuzz/seeds/check_points/regression-out-of-range`): with a
+    /// coordinate of 8e303 the predicates overflow, and the DP accepted a
+    /// triangle that the independent check refused. Such input is now
+    /// refused as out of range; the same triangle at a sane scale is fine.
+    #[test]
+    fn out_of_range_coordinates_are_refused() {
+        let pts = [
+            Point::new(-8.235879855805179e303, -5.267939904436367e178),
+            Point::new(2e-323, 0.0),
+            Point::ZERO,
+        ];
+        assert_eq!(triangulate(&pts), Err(NotSelfOverlapping::OutOfRange(0)));
+        let mut pts = pts;
+        pts[0] = Point::new(-8.0, -5.0);
+        assert_eq!(triangulate(&pts), Err(NotSelfOverlapping::OutOfRange(1)));
+        pts[1] = Point::new(1e-30, 0.0);
+        let imm = triangulate(&pts).unwrap();
+        assert_eq!(check(&imm.points, &imm.triangles), Ok(()));
+        assert_eq!(
+            triangulate(&[Point::X, Point::new(1.0, 1e31), Point::Y]),
+            Err(NotSelfOverlapping::OutOfRange(1))
         );
     }
 }

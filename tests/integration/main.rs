@@ -5,10 +5,12 @@
     reason = "items of a test binary are reachable only inside it"
 )]
 
+mod catalogue;
 mod cli;
 mod curves;
 mod immersion;
 mod mesh;
 mod morph;
 mod pairs;
+mod properties;
 mod util;

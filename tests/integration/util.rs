@@ -68,3 +68,20 @@ pub fn stderr(o: &Output) -> String {
 pub fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
+
+/// Runs `immerse args` (in `dir`, else the project folder) and asserts the
+/// exit code and that stderr is exactly `expected` plus a newline. A bad
+/// input (code 2) also leaves stdout empty.
+pub fn assert_stderr(dir: Option<&Path>, args: &[&str], code: i32, expected: &str) -> Output {
+    let out = match dir {
+        Some(d) => immerse_in(d, args),
+        None => immerse(args),
+    };
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(code), "args {args:?}: stderr {err}");
+    assert_eq!(err, format!("{expected}\n"), "args {args:?}");
+    if code == 2 {
+        assert!(stdout(&out).is_empty(), "no data on stdout for an error");
+    }
+    out
+}

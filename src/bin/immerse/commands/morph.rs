@@ -43,7 +43,7 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         .with_context(|| format!("--easing '{}'", args.easing))?;
     if !(args.fps.is_finite() && args.fps > 0.0 && args.fps <= 1000.0) {
         anyhow::bail!(
-            "--fps {} is not a rate from 0 to 1000 frames per second",
+            "--fps {} is not a rate above 0 and at most 1000 frames per second",
             args.fps
         );
     }

@@ -91,11 +91,6 @@ mod tests {
             );
         }
     }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
 
     #[test]
     fn coordinates_are_read_correctly_rounded() {

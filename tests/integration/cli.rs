@@ -2,7 +2,7 @@
 //! of bad input gives exit code 2 and exactly one documented stderr line
 //! naming the file (the rows of docs/bad-input.md name these tests).
 
-use crate::util::{assert_stderr, curve, immerse, stderr, stdout};
+use crate::util::{assert_stderr, curve, immerse, immerse_in, stderr, stdout};
 
 #[test]
 fn check_json_prints_the_facts() {

@@ -23,7 +23,7 @@
 
 use immerse::Curve;
 use immerse::Point;
-use immerse::immersion::triangulate;
+use immerse::immersion::{NotSelfOverlapping, triangulate};
 use immerse::morph::{Counts, CurveMorphOptions, equal_counts, morph_curves};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -109,7 +109,10 @@ enum Verdict {
     SelfOverlapping,
     /// Self-overlapping only after cleaning reversed it: turned inside out.
     Flipped,
-    /// Not self-overlapping (or not a valid curve at all).
+    /// Not self-overlapping: turning number 1, but no immersed disk.
+    NoDisk,
+    /// Not self-overlapping: cleaning failed, a cusp, or a turning
+    /// number other than ±1.
     No,
 }
 
@@ -117,9 +120,12 @@ fn judge(points: Vec<Point>, source_reversed: bool) -> Verdict {
     let Ok(curve) = Curve::from_points("frame", points) else {
         return Verdict::No;
     };
-    if triangulate(&curve.points).is_err() {
-        Verdict::No
-    } else if curve.reversed != source_reversed {
+    match triangulate(&curve.points) {
+        Err(NotSelfOverlapping::NoValidTriangulation) => return Verdict::NoDisk,
+        Err(_) => return Verdict::No,
+        Ok(_) => {}
+    }
+    if curve.reversed != source_reversed {
         Verdict::Flipped
     } else {
         Verdict::SelfOverlapping
@@ -131,6 +137,7 @@ fn judge(points: Vec<Point>, source_reversed: bool) -> Verdict {
 struct Tally {
     ok: usize,
     flipped: usize,
+    no_disk: usize,
     frames: usize,
 }
 
@@ -145,6 +152,7 @@ impl Tally {
                     t.ok += 1;
                     t.flipped += 1;
                 }
+                Verdict::NoDisk => t.no_disk += 1,
                 Verdict::No => {}
             }
         }
@@ -252,7 +260,10 @@ fn compare(dir: &Path) -> Result<(), Box<dyn std::error::Error>> {
         let source_reversed = Curve::from_points("source", a.clone())?.reversed;
         let flubber_n = fl.frames[0].len();
         for end in [0, FRAMES - 1] {
-            if judge(to_points(&fl.frames[end]), source_reversed) == Verdict::No {
+            if matches!(
+                judge(to_points(&fl.frames[end]), source_reversed),
+                Verdict::No | Verdict::NoDisk
+            ) {
                 eprintln!(
                     "{}: flubber's frame {end} is not self-overlapping",
                     pair.name
@@ -282,6 +293,7 @@ fn compare(dir: &Path) -> Result<(), Box<dyn std::error::Error>> {
         for (sum, t) in [(&mut sum_f, tf), (&mut sum_l, tl), (&mut sum_i, ti)] {
             sum.ok += t.ok;
             sum.flipped += t.flipped;
+            sum.no_disk += t.no_disk;
             sum.frames += t.frames;
         }
         ms_f.push(fl.ms);
@@ -301,6 +313,19 @@ fn compare(dir: &Path) -> Result<(), Box<dyn std::error::Error>> {
         median(ms_l),
         median(ms_i)
     );
+    println!();
+    println!(
+        "| method | self-overlapping | not: turning number 1, no immersed disk | not: turning number ≠ 1, cusp or degenerate |"
+    );
+    println!("|---|---|---|---|");
+    for (name, t) in [("flubber", sum_f), ("linear", sum_l), ("immerse", sum_i)] {
+        println!(
+            "| {name} | {} | {} | {} |",
+            t.ok,
+            t.no_disk,
+            t.frames - t.ok - t.no_disk
+        );
+    }
     Ok(())
 }
 

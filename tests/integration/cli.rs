@@ -278,3 +278,68 @@ fn check_says_why_a_curve_is_not_self_overlapping() {
         "no triangulation of the disk by valid triangles exists"
     );
 }
+
+fn mesh(name: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("meshes")
+        .join(name)
+}
+
+#[test]
+fn mesh_morph_reports_the_linear_fold_and_the_convex_morph_stays_valid() {
+    let (a, b) = (mesh("fg_4_3_a.json"), mesh("fg_4_3_b.json"));
+    let (a, b) = (a.to_str().unwrap(), b.to_str().unwrap());
+    let out = immerse(&["mesh-morph", a, b, "--check-linear"]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(
+        stdout(&out).contains("the linear morph is not valid"),
+        "{}",
+        stdout(&out)
+    );
+    let frames = |method: &str| -> Vec<serde_json::Value> {
+        let out = immerse(&[
+            "mesh-morph",
+            a,
+            b,
+            "--method",
+            method,
+            "--frames",
+            "41",
+            "--json",
+            "-",
+            "-q",
+        ]);
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(v["method"], method);
+        v["frames"].as_array().unwrap().clone()
+    };
+    // The linear morph degenerates at t = 1/2 (frame 20 of 41), and only there.
+    let linear = frames("linear");
+    let invalid: Vec<f64> = linear
+        .iter()
+        .filter(|f| f["valid"] == false)
+        .map(|f| f["t"].as_f64().unwrap())
+        .collect();
+    assert_eq!(invalid, vec![0.5]);
+    for method in ["convex", "intrinsic", "power", "local"] {
+        let fs = frames(method);
+        assert_eq!(fs.len(), 41);
+        assert!(fs.iter().all(|f| f["valid"] == true), "{method}");
+        assert!(fs[0]["faces"].is_array());
+    }
+}
+
+#[test]
+fn mesh_morph_check_linear_accepts_a_valid_linear_morph() {
+    // A tiling morphed into itself moves nothing: the linear morph is valid.
+    let a = mesh("grid6_a.obj");
+    let a = a.to_str().unwrap();
+    let out = immerse(&["mesh-morph", a, a, "--check-linear"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(
+        stdout(&out).starts_with("the linear morph is valid"),
+        "{}",
+        stdout(&out)
+    );
+}

@@ -54,6 +54,16 @@ pub(crate) enum Command {
         after_help = "Examples:\n  immerse morph a.json b.json --frames 40 --json morph.json\n  immerse morph a.svg b.svg -o frames/ --format png --size 800x800\n  immerse morph a.svg b.svg -o morph.gif --easing ease-in-out --ping-pong"
     )]
     Morph(MorphArgs),
+    /// Morph two compatible planar tilings (triangulations or convex faces).
+    ///
+    /// Both tilings share their faces; methods other than linear keep every
+    /// face convex and counter-clockwise (Floater–Gotsman, Surazhsky–
+    /// Gotsman). Every frame carries a `valid` flag decided exactly, so a
+    /// linear morph that folds is reported frame by frame, not hidden.
+    #[command(
+        after_help = "Examples:\n  immerse mesh-morph meshes/fg_4_3_a.json meshes/fg_4_3_b.json --method convex --json m.json\n  immerse mesh-morph a.obj b.obj --check-linear\n  immerse mesh-morph a.obj b.obj --method intrinsic -o frames/"
+    )]
+    MeshMorph(MeshMorphArgs),
     /// Morph two curves shipped inside immerse and write PNG frames and a GIF.
     ///
     /// A curled ribbon that overlaps itself becomes a tail that loops over
@@ -62,6 +72,80 @@ pub(crate) enum Command {
     /// but never files it did not write.
     #[command(after_help = "Examples:\n  immerse demo\n  immerse demo -o /tmp/show --frames 48")]
     Demo(DemoArgs),
+}
+
+/// Mesh morph method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum MethodArg {
+    /// Straight-line vertex paths (may fold; reported per frame).
+    Linear,
+    /// Interpolate barycentric weights and solve (Floater–Gotsman).
+    Convex,
+    /// Interpolate angles and edge lengths in the mean value formula.
+    Intrinsic,
+    /// Neighbourhood matrices to the largest valid power (closer to linear).
+    Power,
+    /// Linear where each star allows it, polar averaging elsewhere.
+    Local,
+}
+
+/// Barycentric weights of the convex-combination methods.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum WeightsArg {
+    /// Mean value coordinates (Floater 2003).
+    MeanValue,
+    /// Floater's averaged shape-preserving weights.
+    Floater,
+    /// Uniform (Tutte) weights; end frames become Tutte drawings.
+    Uniform,
+}
+
+/// Arguments of `immerse mesh-morph`.
+#[derive(Debug, Args)]
+pub(crate) struct MeshMorphArgs {
+    /// The source tiling (.obj or .json with "points" and "faces").
+    pub(crate) source: PathBuf,
+    /// The target tiling, with the same faces.
+    pub(crate) target: PathBuf,
+    /// The morph method.
+    #[arg(long, value_enum, default_value_t = MethodArg::Convex)]
+    pub(crate) method: MethodArg,
+    /// Barycentric weights for convex, power and local.
+    #[arg(long, value_enum, default_value_t = WeightsArg::MeanValue)]
+    pub(crate) weights: WeightsArg,
+    /// Improve triangle areas in the local method (seed 003 §4.3).
+    #[arg(long)]
+    pub(crate) area_improvement: bool,
+    /// Morph through this intermediate tiling (convex and intrinsic).
+    #[arg(long, value_name = "FILE")]
+    pub(crate) intermediate: Option<PathBuf>,
+    /// Number of frames, including both ends.
+    #[arg(long, default_value_t = 41, value_parser = clap::value_parser!(u32).range(2..=100_000))]
+    pub(crate) frames: u32,
+    /// Only report whether the linear morph is valid (exact test on every star).
+    #[arg(long)]
+    pub(crate) check_linear: bool,
+    /// Write the frames as JSON to this file ("-" for stdout).
+    #[arg(long, value_name = "FILE")]
+    pub(crate) json: Option<PathBuf>,
+    /// Write images: a folder for png/svg sequences, a file for gif, animated-svg or a sheet.
+    #[arg(short, long, value_name = "PATH")]
+    pub(crate) output: Option<PathBuf>,
+    /// Image format; by default from the -o extension (.gif, .svg, .png sheet), png frames for a folder.
+    #[arg(long, value_enum)]
+    pub(crate) format: Option<FormatArg>,
+    /// Image size in pixels, WIDTHxHEIGHT.
+    #[arg(long, value_name = "WxH", default_value = "600x600", value_parser = parse_size)]
+    pub(crate) size: (u32, u32),
+    /// Frames per second of a GIF or animated SVG.
+    #[arg(long, default_value_t = 30.0)]
+    pub(crate) fps: f64,
+    /// Replace existing output files.
+    #[arg(long)]
+    pub(crate) force: bool,
+    /// No progress bars or notices on stderr.
+    #[arg(short, long)]
+    pub(crate) quiet: bool,
 }
 
 /// Arguments of `immerse demo`.

@@ -3,6 +3,7 @@
 
 mod check;
 mod demo;
+mod mesh_morph;
 mod morph;
 mod triangulate;
 
@@ -19,6 +20,7 @@ pub(crate) fn run(cli: Cli) -> anyhow::Result<Outcome> {
         Command::Triangulate(args) => triangulate::run(&args),
         Command::Morph(args) => morph::run(&args),
         Command::Demo(args) => demo::run(&args),
+        Command::MeshMorph(args) => mesh_morph::run(&args),
     }
 }
 

@@ -1,0 +1,161 @@
+//! `immerse mesh-morph`: morphs between compatible planar tilings.
+
+use super::morph::write_frames;
+use super::plain_points;
+use crate::Outcome;
+use crate::args::{FormatArg, MeshMorphArgs, MethodArg, WeightsArg};
+use crate::output;
+use immerse::coords::Weights;
+use immerse::mesh_morph::{LinearCheck, MeshMorphOptions, Method, check_linear, mesh_morph};
+use immerse::tiling::Tiling;
+use immerse_render as render;
+use serde::Serialize;
+
+/// One frame of `mesh-morph --json` (DESIGN.md §10).
+#[derive(Serialize)]
+struct FrameJson<'a> {
+    /// Time in [0, 1].
+    t: f64,
+    /// Vertex positions, y up.
+    points: Vec<[f64; 2]>,
+    /// The faces, as in the input.
+    faces: &'a [Vec<u32>],
+    /// True when every face is strictly convex and counter-clockwise
+    /// (decided exactly).
+    valid: bool,
+}
+
+/// The JSON of `mesh-morph --json`.
+#[derive(Serialize)]
+struct MorphJson<'a> {
+    /// The method used.
+    method: &'static str,
+    /// The frames in order of t.
+    frames: Vec<FrameJson<'a>>,
+}
+
+pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
+    if let Some(json) = &args.json
+        && json.as_os_str() != "-"
+        && !args.force
+        && json.exists()
+    {
+        anyhow::bail!("{} exists; pass --force to replace it", json.display());
+    }
+    let a = Tiling::from_path(&args.source)?;
+    let b = Tiling::from_path(&args.target)?;
+    if args.check_linear {
+        return Ok(match check_linear(&a, &b) {
+            LinearCheck::Valid => {
+                output::print(
+                    "the linear morph is valid: every face stays convex and counter-clockwise for all t in [0, 1]",
+                )?;
+                Outcome::Success
+            }
+            LinearCheck::Degenerates {
+                vertex,
+                a: p,
+                b: q,
+                t_from,
+                t_to,
+            } => {
+                output::print(&format!(
+                    "the linear morph is not valid: the corner at vertex {vertex} between {p} and {q} folds for t in [{t_from:.6}, {t_to:.6}]"
+                ))?;
+                Outcome::Negative
+            }
+            LinearCheck::Incompatible(why) => {
+                anyhow::bail!(
+                    "{} and {}: {why}",
+                    args.source.display(),
+                    args.target.display()
+                )
+            }
+        });
+    }
+    let method = match args.method {
+        MethodArg::Linear => Method::Linear,
+        MethodArg::Convex => Method::Convex,
+        MethodArg::Intrinsic => Method::Intrinsic,
+        MethodArg::Power => Method::Power,
+        MethodArg::Local => Method::Local,
+    };
+    let weights = match args.weights {
+        WeightsArg::MeanValue => Weights::MeanValue,
+        WeightsArg::Floater => Weights::Floater,
+        WeightsArg::Uniform => Weights::Uniform,
+    };
+    let mut options = MeshMorphOptions::DEFAULT
+        .with_weights(weights)
+        .with_area_improvement(args.area_improvement);
+    if let Some(path) = &args.intermediate {
+        options = options.with_intermediate(Some(Tiling::from_path(path)?), 0.5);
+    }
+    let n = args.frames as usize;
+    let times: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
+    let frames = mesh_morph(&a, &b, method, &times, &options)?;
+    let invalid = frames.iter().filter(|f| !f.valid).count();
+    if let Some(json) = &args.json {
+        let doc = MorphJson {
+            method: method.as_str(),
+            frames: frames
+                .iter()
+                .map(|f| FrameJson {
+                    t: f.t,
+                    points: plain_points(&f.points),
+                    faces: &a.faces,
+                    valid: f.valid,
+                })
+                .collect(),
+        };
+        let text = serde_json::to_string(&doc)?;
+        if json.as_os_str() == "-" {
+            output::print(&text)?;
+        } else {
+            render::write_atomic(json, text.as_bytes(), args.force)?;
+        }
+    }
+    if let Some(out) = &args.output {
+        let plain: Vec<render::Frame> = frames
+            .iter()
+            .map(|f| render::Frame {
+                points: plain_points(&f.points),
+                faces: a.faces.clone(),
+                outline: a.boundary(),
+                ..render::Frame::default()
+            })
+            .collect();
+        let ext = out
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        let format = args.format.unwrap_or(match ext.as_deref() {
+            Some("gif") => FormatArg::Gif,
+            Some("svg") => FormatArg::AnimatedSvg,
+            Some("png") => FormatArg::Sheet,
+            _ => FormatArg::Png,
+        });
+        let style = render::Style::DEFAULT
+            .with_size(args.size.0, args.size.1)
+            .with_wireframe(true);
+        write_frames(
+            &plain,
+            out,
+            format,
+            &style,
+            args.fps,
+            render::Loop::Loop,
+            args.force,
+            args.quiet,
+        )?;
+    }
+    if !args.quiet {
+        output::note(&format!(
+            "{} frames by the {} method: {} valid, {invalid} with a folded or degenerate face",
+            frames.len(),
+            method.as_str(),
+            frames.len() - invalid
+        ));
+    }
+    Ok(Outcome::Success)
+}

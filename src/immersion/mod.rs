@@ -95,7 +95,34 @@ pub enum NotSelfOverlapping {
         "point {0} has a coordinate that is not finite or outside the range [1e-30, 1e30] where the predicates are exact; rescale the points"
     )]
     OutOfRange(usize),
+    /// More points than the dynamic program accepts (its tables take
+    /// O(n²) memory and its time grows as n³); simplify the curve.
+    #[error(
+        "{n} points is more than the {limit} this triangulation accepts (memory grows as n², time as n³); simplify the curve"
+    )]
+    TooManyPoints {
+        /// Points given.
+        n: usize,
+        /// The limit of the triangulator asked.
+        limit: usize,
+    },
 }
+
+impl NotSelfOverlapping {
+    /// True when this is an answer about the curve (it is not
+    /// self-overlapping); false when no answer could be computed (points
+    /// out of range, too many points), which is bad input.
+    pub fn is_answer(&self) -> bool {
+        !matches!(
+            self,
+            NotSelfOverlapping::OutOfRange(_) | NotSelfOverlapping::TooManyPoints { .. }
+        )
+    }
+}
+
+/// Most points the decision DP accepts: its five n × n bit tables take
+/// 5n²/8 bytes (250 MB at this limit) and its time grows as n³/64.
+pub const MAX_DP_POINTS: usize = 20_000;
 
 /// Check the preconditions shared by every triangulator: at least 3 points,
 /// every coordinate in the predicates' exact range, and turning number
@@ -103,6 +130,12 @@ pub enum NotSelfOverlapping {
 pub(crate) fn precheck(points: &[Point]) -> Result<(), NotSelfOverlapping> {
     if points.len() < 3 {
         return Err(NotSelfOverlapping::NoValidTriangulation);
+    }
+    if points.len() > MAX_DP_POINTS {
+        return Err(NotSelfOverlapping::TooManyPoints {
+            n: points.len(),
+            limit: MAX_DP_POINTS,
+        });
     }
     let in_range = |v: f64| v == 0.0 || (MIN_COORDINATE..=MAX_COORDINATE).contains(&v.abs());
     if let Some(i) = points

@@ -128,6 +128,12 @@ pub fn triangulate_with_progress(
         Quality::Delaunay => triangulate_progress(points, progress).map(improve),
         Quality::MaxMin => {
             precheck(points)?;
+            if points.len() > MAX_MAXMIN_POINTS {
+                return Err(NotSelfOverlapping::TooManyPoints {
+                    n: points.len(),
+                    limit: MAX_MAXMIN_POINTS,
+                });
+            }
             let triangles = optimal::maxmin(points, progress)
                 .ok_or(NotSelfOverlapping::NoValidTriangulation)?;
             Ok(Immersion {
@@ -137,6 +143,10 @@ pub fn triangulate_with_progress(
         }
     }
 }
+
+/// Most points the max–min-angle DP accepts: it keeps about 36n² bytes
+/// of tables (576 MB at this limit).
+pub const MAX_MAXMIN_POINTS: usize = 4_000;
 
 /// Working memory of [`triangulate_maxmin`] for `n` points, in bytes.
 pub fn maxmin_memory_bytes(n: usize) -> usize {

@@ -343,3 +343,50 @@ fn mesh_morph_check_linear_accepts_a_valid_linear_morph() {
         stdout(&out)
     );
 }
+
+#[test]
+fn curves_too_large_for_the_dp_are_refused_with_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let n = immerse::immersion::MAX_DP_POINTS + 1;
+    let pts: Vec<[f64; 2]> = (0..n)
+        .map(|i| {
+            let a = std::f64::consts::TAU * i as f64 / n as f64;
+            [a.cos(), a.sin()]
+        })
+        .collect();
+    std::fs::write(
+        dir.path().join("big.json"),
+        serde_json::to_string(&pts).unwrap(),
+    )
+    .unwrap();
+    let out = immerse_in(dir.path(), &["check", "big.json"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("big.json: 20001 points is more than the 20000"),
+        "{}",
+        stderr(&out)
+    );
+    // The max–min DP has its own, lower limit.
+    let m = immerse::quality::MAX_MAXMIN_POINTS + 1;
+    let pts: Vec<[f64; 2]> = (0..m)
+        .map(|i| {
+            let a = std::f64::consts::TAU * i as f64 / m as f64;
+            [a.cos(), a.sin()]
+        })
+        .collect();
+    std::fs::write(
+        dir.path().join("mid.json"),
+        serde_json::to_string(&pts).unwrap(),
+    )
+    .unwrap();
+    let out = immerse_in(
+        dir.path(),
+        &["triangulate", "mid.json", "--quality", "maxmin"],
+    );
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("4001 points is more than the 4000"),
+        "{}",
+        stderr(&out)
+    );
+}

@@ -30,6 +30,11 @@ pub(crate) fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
     let curve = Curve::from_path(&args.curve)?;
     let crossing = polygon::first_self_intersection(&curve.points);
     let verdict = immersion::triangulate(&curve.points);
+    if let Err(e) = &verdict
+        && !e.is_answer()
+    {
+        anyhow::bail!("{}: {e}", args.curve.display());
+    }
     let report = CheckReport {
         points: curve.len(),
         turning_number: curve.turning_number_as_given(),

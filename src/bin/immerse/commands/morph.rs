@@ -14,6 +14,9 @@ use immerse::{Curve, Quality};
 use immerse_render as render;
 use std::path::Path;
 
+/// Most vertex positions (frames × points) one morph keeps in memory.
+const MAX_FRAME_POINTS: usize = 50_000_000;
+
 impl From<PathArg> for ThirdVertexPath {
     fn from(p: PathArg) -> ThirdVertexPath {
         match p {
@@ -67,6 +70,13 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
             }
         }
     }
+    let n = src.len().max(dst.len());
+    if (args.frames as usize).saturating_mul(n) > MAX_FRAME_POINTS {
+        anyhow::bail!(
+            "{} frames of {n} points is more than {MAX_FRAME_POINTS} points in all; ask for fewer --frames",
+            args.frames
+        );
+    }
     let times = render::frame_times(args.frames as usize, &easing);
     let options = CurveMorphOptions::DEFAULT
         .with_quality(Quality::from(args.quality))
@@ -82,6 +92,13 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         .with_morph(MorphOptions::DEFAULT.with_path(args.path.into()));
     let (report, morph) = match morph_curves(&src.points, &dst.points, &times, &options) {
         Ok(done) => done,
+        Err(CurveMorphError::NotSelfOverlapping { side, reason }) if !reason.is_answer() => {
+            let file = match side {
+                immerse::morph::Side::Source => &args.source,
+                immerse::morph::Side::Target => &args.target,
+            };
+            anyhow::bail!("{}: {reason}", file.display());
+        }
         Err(err @ CurveMorphError::NotSelfOverlapping { .. }) => {
             let file = match err {
                 CurveMorphError::NotSelfOverlapping {

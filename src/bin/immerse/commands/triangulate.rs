@@ -38,6 +38,9 @@ pub(crate) fn run(args: &TriangulateArgs) -> anyhow::Result<Outcome> {
     bar.finish_and_clear();
     let imm = match result {
         Ok(imm) => imm,
+        Err(reason) if !reason.is_answer() => {
+            anyhow::bail!("{}: {reason}", args.curve.display());
+        }
         Err(reason) => {
             output::note(&format!(
                 "{}: not self-overlapping: {reason}",

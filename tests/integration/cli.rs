@@ -390,3 +390,28 @@ fn curves_too_large_for_the_dp_are_refused_with_exit_2() {
         stderr(&out)
     );
 }
+
+#[test]
+fn morph_refuses_more_frame_points_than_it_keeps_in_memory() {
+    let dir = tempfile::tempdir().unwrap();
+    let pts: Vec<[f64; 2]> = (0..600)
+        .map(|i| {
+            let a = std::f64::consts::TAU * f64::from(i) / 600.0;
+            [a.cos(), a.sin()]
+        })
+        .collect();
+    std::fs::write(
+        dir.path().join("c.json"),
+        serde_json::to_string(&pts).unwrap(),
+    )
+    .unwrap();
+    let out = immerse_in(
+        dir.path(),
+        &["morph", "c.json", "c.json", "--frames", "100000"],
+    );
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(
+        stderr(&out).trim_end(),
+        "immerse: 100000 frames of 600 points is more than 50000000 points in all; ask for fewer --frames"
+    );
+}

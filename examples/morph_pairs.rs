@@ -12,42 +12,18 @@ use immerse::morph::{Correspondence, CurveMorphOptions, Intermediate, morph_curv
 use std::path::Path;
 use std::time::Instant;
 
-const PAIRS: &[(&str, &str)] = &[
-    ("triangle.json", "star-5-points.json"),
-    ("letter-E.json", "star-5-points.json"),
-    ("blob-n64.json", "letter-S-n62.json"),
-    ("comb-8-teeth.json", "annulus-sector-300deg-n40.json"),
-    ("hexagon-text-format.txt", "letter-L.svg"),
-    ("card-rotated.svg", "letter-C.svg"),
-    (
-        "spiral-strip-400deg-n30.json",
-        "circular-strip-450deg-n60.json",
-    ),
-    ("curl-strip-n10.json", "spiral-strip-400deg-n30.json"),
-    ("immersed-disk-n20.json", "immersed-disk-n40.json"),
-    (
-        "spiral-strip-540deg-n120.json",
-        "spiral-strip-capped-450deg-n92.json",
-    ),
-    ("ribbon-curl.svg", "tail-loop.svg"),
-    ("ring-wrap-400deg.svg", "folded-ribbon.svg"),
-    (
-        "immersed-disk-n80.json",
-        "spiral-strip-540deg-n120-clockwise.json",
-    ),
-    ("letter-S-n62.json", "spiral-strip-400deg-n30.json"),
-    ("blob-n64.json", "ribbon-curl.svg"),
-    ("comb-8-teeth.json", "tail-loop.svg"),
-    ("letter-C.svg", "circular-strip-450deg-n60.json"),
-    ("triangle.json", "spiral-strip-720deg-n200.json"),
-    ("star-5-points.json", "immersed-disk-n80.json"),
-    (
-        "degenerate-repeated-points-square.json",
-        "ring-wrap-400deg.svg",
-    ),
-    ("annulus-sector-300deg-n40.json", "curl-strip-n10.json"),
-    ("hexagon-text-format.txt", "spiral-strip-1080deg-n400.json"),
-];
+/// The pairs of `curves/reference-pairs.txt` ("source target" per line,
+/// `#` comments).
+fn reference_pairs() -> Vec<(String, String)> {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("curves/reference-pairs.txt");
+    let text = std::fs::read_to_string(&path).expect("curves/reference-pairs.txt is readable");
+    text.lines()
+        .map(|l| l.split('#').next().unwrap_or("").trim())
+        .filter(|l| !l.is_empty())
+        .filter_map(|l| l.split_once(' '))
+        .map(|(a, b)| (a.trim().to_string(), b.trim().to_string()))
+        .collect()
+}
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -75,7 +51,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let (mut angles, mut flips, mut lengths, mut times) =
                 (Vec::new(), Vec::new(), Vec::new(), Vec::new());
             let mut disks = 0;
-            for &(a, b) in PAIRS {
+            for (a, b) in &reference_pairs() {
                 let ca = Curve::from_path(dir.join(a))?;
                 let cb = Curve::from_path(dir.join(b))?;
                 let options = CurveMorphOptions::DEFAULT

@@ -2,7 +2,6 @@
 //! Table 1).
 
 use crate::geom::Point;
-use crate::geom::polygon::triangle_angles;
 use crate::morph::ThirdVertexPath;
 
 /// One in-between: vertex positions and the triangulation they carry.
@@ -44,14 +43,7 @@ impl Frame {
 
     /// The smallest triangle angle of the frame, in radians.
     pub fn min_angle(&self) -> f64 {
-        self.triangles
-            .iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|v| self.points[v as usize]);
-                let [x, y, z] = triangle_angles(a, b, c);
-                x.min(y).min(z)
-            })
-            .fold(f64::INFINITY, f64::min)
+        crate::geom::polygon::min_triangle_angle(&self.points, &self.triangles)
     }
 
     /// Total area of the triangles (overlaps counted with multiplicity).

@@ -185,6 +185,18 @@ pub fn triangle_angles(a: Point, b: Point, c: Point) -> [f64; 3] {
     [ang(a, b, c), ang(b, c, a), ang(c, a, b)]
 }
 
+/// The smallest interior angle (radians) over the triangles `tris` of
+/// `points`; +∞ when there are none. Measurement only.
+pub fn min_triangle_angle(points: &[Point], tris: &[[u32; 3]]) -> f64 {
+    tris.iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| points[v as usize]);
+            let [x, y, z] = triangle_angles(a, b, c);
+            x.min(y).min(z)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

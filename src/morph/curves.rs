@@ -7,6 +7,7 @@ use super::{MorphError, MorphOptions, ThirdVertexPath};
 use crate::correspond::{insert_vertices, resample_arc_length, shift_triangles};
 use crate::frames::{Frame, Morph};
 use crate::geom::Point;
+use crate::geom::polygon::min_triangle_angle as min_angle;
 use crate::immersion::{Immersion, NotSelfOverlapping};
 use crate::quality::{Quality, triangulate_with};
 
@@ -300,16 +301,6 @@ pub struct MorphReport {
     /// True when the side used needed the disk (always for the disk
     /// route; a fallback for the target route).
     pub used_disk: bool,
-}
-
-fn min_angle(points: &[Point], tris: &[[u32; 3]]) -> f64 {
-    tris.iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|v| points[v as usize]);
-            let [x, y, z] = crate::geom::polygon::triangle_angles(a, b, c);
-            x.min(y).min(z)
-        })
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// Morphs curve `a` into curve `b` (both oriented, turning number +1).

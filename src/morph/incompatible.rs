@@ -24,7 +24,8 @@ use super::flips::{Flip, FlipTriangulation, canonical, flip_sequence};
 use super::{Compatible, MorphError, ThirdVertexPath};
 use crate::frames::Frame;
 use crate::geom::Point;
-use crate::geom::polygon::{signed_area, triangle_angles};
+use crate::geom::polygon::min_triangle_angle as min_angle;
+use crate::geom::polygon::signed_area;
 use crate::immersion::{check, is_valid_triangle};
 use crate::tree::{RootChoice, disk_positions};
 
@@ -85,16 +86,6 @@ pub fn disk_for(points: &[Point], area: f64, centroid: Point) -> Vec<Point> {
     unit.into_iter()
         .map(|p| centroid + (p - c_unit) * scale)
         .collect()
-}
-
-fn min_angle(points: &[Point], tris: &[[u32; 3]]) -> f64 {
-    tris.iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|v| points[v as usize]);
-            let [x, y, z] = triangle_angles(a, b, c);
-            x.min(y).min(z)
-        })
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// Whether `flip` may be applied in shape `p` under the gate: both new

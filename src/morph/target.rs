@@ -30,6 +30,7 @@ use super::flips::{FlipTriangulation, crosses};
 use super::incompatible::{Leg, Staged, disk_for, stage};
 use super::{Compatible, MorphError, ThirdVertexPath, area_and_centroid, lay_out_rooted};
 use crate::geom::Point;
+use crate::geom::polygon::min_triangle_angle as min_angle;
 use crate::geom::polygon::triangle_angles;
 use crate::immersion::{check, is_valid_triangle};
 use crate::tree::{DualTree, RootChoice};
@@ -46,16 +47,6 @@ const LEG_STEP: f64 = 1.0 / 200.0;
 
 fn canonical(t: [u32; 3]) -> [u32; 3] {
     super::flips::canonical(t)
-}
-
-fn min_angle(points: &[Point], tris: &[[u32; 3]]) -> f64 {
-    tris.iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|v| points[v as usize]);
-            let [x, y, z] = triangle_angles(a, b, c);
-            x.min(y).min(z)
-        })
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// The target D*: the other curve measured with `tris`, made valid, laid

@@ -10,44 +10,18 @@ use immerse::geom::Point;
 use immerse::immersion::check;
 use immerse::morph::{CurveMorphOptions, morph_curves};
 
-/// Pairs: simple ↔ simple, self-intersecting ↔ self-intersecting, simple ↔
-/// self-intersecting, and very different vertex counts.
-const PAIRS: &[(&str, &str)] = &[
-    ("triangle.json", "star-5-points.json"),
-    ("letter-E.json", "star-5-points.json"),
-    ("blob-n64.json", "letter-S-n62.json"),
-    ("comb-8-teeth.json", "annulus-sector-300deg-n40.json"),
-    ("hexagon-text-format.txt", "letter-L.svg"),
-    ("card-rotated.svg", "letter-C.svg"),
-    (
-        "spiral-strip-400deg-n30.json",
-        "circular-strip-450deg-n60.json",
-    ),
-    ("curl-strip-n10.json", "spiral-strip-400deg-n30.json"),
-    ("immersed-disk-n20.json", "immersed-disk-n40.json"),
-    (
-        "spiral-strip-540deg-n120.json",
-        "spiral-strip-capped-450deg-n92.json",
-    ),
-    ("ribbon-curl.svg", "tail-loop.svg"),
-    ("ring-wrap-400deg.svg", "folded-ribbon.svg"),
-    (
-        "immersed-disk-n80.json",
-        "spiral-strip-540deg-n120-clockwise.json",
-    ),
-    ("letter-S-n62.json", "spiral-strip-400deg-n30.json"),
-    ("blob-n64.json", "ribbon-curl.svg"),
-    ("comb-8-teeth.json", "tail-loop.svg"),
-    ("letter-C.svg", "circular-strip-450deg-n60.json"),
-    ("triangle.json", "spiral-strip-720deg-n200.json"),
-    ("star-5-points.json", "immersed-disk-n80.json"),
-    (
-        "degenerate-repeated-points-square.json",
-        "ring-wrap-400deg.svg",
-    ),
-    ("annulus-sector-300deg-n40.json", "curl-strip-n10.json"),
-    ("hexagon-text-format.txt", "spiral-strip-1080deg-n400.json"),
-];
+/// The pairs of `curves/reference-pairs.txt` ("source target" per line,
+/// `#` comments).
+fn reference_pairs() -> Vec<(String, String)> {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("curves/reference-pairs.txt");
+    let text = std::fs::read_to_string(&path).expect("curves/reference-pairs.txt is readable");
+    text.lines()
+        .map(|l| l.split('#').next().unwrap_or("").trim())
+        .filter(|l| !l.is_empty())
+        .filter_map(|l| l.split_once(' '))
+        .map(|(a, b)| (a.trim().to_string(), b.trim().to_string()))
+        .collect()
+}
 
 fn load(name: &str) -> Curve {
     Curve::from_path(curve(name)).unwrap_or_else(|e| panic!("{e}"))
@@ -106,9 +80,11 @@ fn reproduces(frame: &[Point], curve: &[Point], shift: usize) {
 
 #[test]
 fn reference_pairs_morph_with_every_frame_an_immersion() {
-    assert!(PAIRS.len() >= 20);
+    let pairs = reference_pairs();
+    assert!(pairs.len() >= 20);
     let options = CurveMorphOptions::DEFAULT;
-    for &(sa, sb) in PAIRS {
+    for (sa, sb) in &pairs {
+        let (sa, sb) = (sa.as_str(), sb.as_str());
         let (a, b) = (load(sa), load(sb));
         // 40 displacement-timed frames.
         let (report, m40) = morph_curves(&a.points, &b.points, &fractions(40), &options)
@@ -166,7 +142,8 @@ fn reference_pairs_morph_with_every_frame_an_immersion() {
 #[test]
 fn morph_backwards_is_the_same_sequence_reversed() {
     let options = CurveMorphOptions::DEFAULT;
-    for &(sa, sb) in PAIRS {
+    for (sa, sb) in &reference_pairs() {
+        let (sa, sb) = (sa.as_str(), sb.as_str());
         let (a, b) = (load(sa), load(sb));
         let fr = fractions(41);
         let (ra, ab) = morph_curves(&a.points, &b.points, &fr, &options).unwrap();
@@ -200,7 +177,8 @@ fn morph_backwards_is_the_same_sequence_reversed() {
 fn the_disk_route_is_valid_and_symmetric_too() {
     use immerse::morph::Intermediate;
     let options = CurveMorphOptions::DEFAULT.with_intermediate(Intermediate::Disk);
-    for &(sa, sb) in PAIRS {
+    for (sa, sb) in &reference_pairs() {
+        let (sa, sb) = (sa.as_str(), sb.as_str());
         let (a, b) = (load(sa), load(sb));
         let (ra, ab) = morph_curves(&a.points, &b.points, &fractions(400), &options).unwrap();
         assert!(ra.used_disk);
@@ -230,8 +208,8 @@ fn the_disk_route_is_valid_and_symmetric_too() {
 fn the_target_route_needs_no_disk_on_the_reference_pairs() {
     let options = CurveMorphOptions::DEFAULT;
     let mut disk = Vec::new();
-    for &(sa, sb) in PAIRS {
-        let (a, b) = (load(sa), load(sb));
+    for (sa, sb) in reference_pairs() {
+        let (a, b) = (load(&sa), load(&sb));
         let (r, _) = morph_curves(&a.points, &b.points, &fractions(10), &options).unwrap();
         if r.used_disk {
             disk.push((sa, sb));

@@ -12,11 +12,11 @@ use immerse::morph::{Correspondence, CurveMorphOptions, Intermediate, morph_curv
 use std::path::Path;
 use std::time::Instant;
 
-/// The pairs of `curves/reference-pairs.txt` ("source target" per line,
+/// The pairs of `curves/reference-pairs.list` ("source target" per line,
 /// `#` comments).
 fn reference_pairs() -> Vec<(String, String)> {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("curves/reference-pairs.txt");
-    let text = std::fs::read_to_string(&path).expect("curves/reference-pairs.txt is readable");
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("curves/reference-pairs.list");
+    let text = std::fs::read_to_string(&path).expect("curves/reference-pairs.list is readable");
     text.lines()
         .map(|l| l.split('#').next().unwrap_or("").trim())
         .filter(|l| !l.is_empty())

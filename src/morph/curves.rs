@@ -179,6 +179,10 @@ impl Intermediate {
 pub enum Correspondence {
     /// Vertex 0 matches vertex 0.
     Identity,
+    /// Try the shift of each rule above and keep the one whose morph is
+    /// shortest (DESIGN.md §7a: score candidates by a trial morph, not by
+    /// flip count alone); costs one morph per distinct candidate.
+    Best,
     /// The pivot vertices (seed 004 §6.1) of the two triangulations match.
     Pivot,
     /// The shift with the fewest crossings between the two triangulations
@@ -193,11 +197,12 @@ pub enum Correspondence {
 
 impl Correspondence {
     /// All rules, in CLI order.
-    pub const ALL: [Correspondence; 4] = [
+    pub const ALL: [Correspondence; 5] = [
         Correspondence::MinFlips,
         Correspondence::Pivot,
         Correspondence::Shape,
         Correspondence::Identity,
+        Correspondence::Best,
     ];
 
     /// The CLI name.
@@ -207,6 +212,7 @@ impl Correspondence {
             Correspondence::Pivot => "pivot",
             Correspondence::MinFlips => "min-flips",
             Correspondence::Shape => "shape",
+            Correspondence::Best => "best",
         }
     }
 }
@@ -234,7 +240,8 @@ pub fn shape_cost_per_shift(a: &[Point], b: &[Point]) -> Vec<f64> {
 }
 
 /// Chooses the cyclic shift k (target vertex `i + k` matches source
-/// vertex `i`) by `rule`.
+/// vertex `i`) by `rule` ([`Correspondence::Best`] needs trial morphs,
+/// which [`morph_curves`] runs; here it means `MinFlips`).
 pub fn choose_shift(
     a: &[Point],
     b: &[Point],
@@ -263,7 +270,8 @@ pub fn choose_shift(
                 })
                 .unwrap_or(0)
         }
-        Correspondence::MinFlips => {
+        // Without a trial morph, `best` starts from the fewest flips.
+        Correspondence::MinFlips | Correspondence::Best => {
             let geo = shape_cost_per_shift(a, b);
             let cross = crossings_per_shift(n, ta, tb);
             (0..n)
@@ -327,43 +335,81 @@ pub fn morph_curves(
     let n = a.len();
     let ta = triangulate_side(&a, options.quality, Side::Source)?.triangles;
     let tb = triangulate_side(&b, options.quality, Side::Target)?.triangles;
-    let k = choose_shift(&a, &b, &ta, &tb, options.correspondence);
-    let b_in_a: Vec<Point> = (0..n).map(|i| b[(i + k) % n]).collect();
-    let tb_in_a = shift_triangles(n, &tb, k);
-    let a_in_b: Vec<Point> = (0..n).map(|j| a[(j + n - k) % n]).collect();
-    let ta_in_b = shift_triangles(n, &ta, (n - k) % n);
     let m = &options.morph;
     let floor = 0.25 * min_angle(&a, &ta).min(min_angle(&b, &tb));
-    let side = |s: &[Point], t: &[[u32; 3]], o: &[Point], to: &[[u32; 3]]| {
-        Staged::new(
-            s,
-            t,
-            o,
-            to,
-            m.path,
-            m.root,
-            m.fan_margin,
-            options.intermediate,
-            floor,
-        )
-    };
-    let side_a = side(&a, &ta, &b_in_a, &tb_in_a)?;
-    let side_b = side(&b, &tb, &a_in_b, &ta_in_b)?;
     let lex = |p: &[Point]| -> Vec<u64> {
         p.iter()
             .flat_map(|q| [q.x.to_bits(), q.y.to_bits()])
             .collect()
     };
-    // The disk route compares where each side reaches the other
-    // triangulation (seed 004); the target route compares path lengths.
-    let (ka, kb) = match options.intermediate {
-        Intermediate::Disk => (side_a.u_star, side_b.u_star),
-        Intermediate::Target => (side_a.path_length(), side_b.path_length()),
+    let a_first = lex(&a) <= lex(&b);
+    // Both sides for the shift k, and whether side A is the one to use.
+    let sides = |k: usize| -> Result<(Staged, Staged, bool), CurveMorphError> {
+        let b_in_a: Vec<Point> = (0..n).map(|i| b[(i + k) % n]).collect();
+        let tb_in_a = shift_triangles(n, &tb, k);
+        let a_in_b: Vec<Point> = (0..n).map(|j| a[(j + n - k) % n]).collect();
+        let ta_in_b = shift_triangles(n, &ta, (n - k) % n);
+        let side = |s: &[Point], t: &[[u32; 3]], o: &[Point], to: &[[u32; 3]]| {
+            Staged::new(
+                s,
+                t,
+                o,
+                to,
+                m.path,
+                m.root,
+                m.fan_margin,
+                options.intermediate,
+                floor,
+            )
+        };
+        let side_a = side(&a, &ta, &b_in_a, &tb_in_a)?;
+        let side_b = side(&b, &tb, &a_in_b, &ta_in_b)?;
+        // The disk route compares where each side reaches the other
+        // triangulation (seed 004); the target route compares path lengths.
+        let (ka, kb) = match options.intermediate {
+            Intermediate::Disk => (side_a.u_star, side_b.u_star),
+            Intermediate::Target => (side_a.path_length(), side_b.path_length()),
+        };
+        let use_a = match ka.total_cmp(&kb) {
+            std::cmp::Ordering::Less => true,
+            std::cmp::Ordering::Greater => false,
+            std::cmp::Ordering::Equal => a_first,
+        };
+        Ok((side_a, side_b, use_a))
     };
-    let use_a = match ka.total_cmp(&kb) {
-        std::cmp::Ordering::Less => true,
-        std::cmp::Ordering::Greater => false,
-        std::cmp::Ordering::Equal => lex(&a) <= lex(&b),
+    let (k, (side_a, side_b, use_a)) = if options.correspondence == Correspondence::Best {
+        // Try the shift of every other rule; keep the shortest morph (ties
+        // to the earlier rule, whose order is the same in both directions).
+        let mut best: Option<(f64, usize, (Staged, Staged, bool))> = None;
+        let mut tried: Vec<usize> = Vec::new();
+        for rule in [
+            Correspondence::MinFlips,
+            Correspondence::Pivot,
+            Correspondence::Shape,
+            Correspondence::Identity,
+        ] {
+            let k = choose_shift(&a, &b, &ta, &tb, rule);
+            if tried.contains(&k) {
+                continue;
+            }
+            tried.push(k);
+            let s = sides(k)?;
+            let length = if s.2 {
+                s.0.path_length()
+            } else {
+                s.1.path_length()
+            };
+            if best.as_ref().is_none_or(|(l, _, _)| length < *l) {
+                best = Some((length, k, s));
+            }
+        }
+        match best {
+            Some((_, k, s)) => (k, s),
+            None => (0, sides(0)?),
+        }
+    } else {
+        let k = choose_shift(&a, &b, &ta, &tb, options.correspondence);
+        (k, sides(k)?)
     };
     let report = |used: Side, chosen: &Staged| MorphReport {
         n,

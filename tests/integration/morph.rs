@@ -217,3 +217,27 @@ fn the_target_route_needs_no_disk_on_the_reference_pairs() {
     }
     assert!(disk.is_empty(), "needed the disk: {disk:?}");
 }
+
+#[test]
+fn the_best_correspondence_is_symmetric() {
+    use immerse::morph::Correspondence;
+    let best = CurveMorphOptions::DEFAULT.with_correspondence(Correspondence::Best);
+    let fr = fractions(21);
+    for (sa, sb) in reference_pairs().into_iter().take(8) {
+        let (a, b) = (load(&sa), load(&sb));
+        let (ra, ab) = morph_curves(&a.points, &b.points, &fr, &best).unwrap();
+        let (rb, ba) = morph_curves(&b.points, &a.points, &fr, &best).unwrap();
+        assert_eq!((ra.shift + rb.shift) % ra.n, 0, "{sa} {sb}");
+        let (n, k) = (ra.n, ra.shift);
+        for (j, f) in ab.frames.iter().enumerate() {
+            let g = &ba.frames[ab.frames.len() - 1 - j];
+            for i in 0..n {
+                assert!(
+                    (f.points[i] - g.points[(i + k) % n]).length() < 1e-9,
+                    "{sa} {sb}"
+                );
+            }
+            assert!(f.is_immersion());
+        }
+    }
+}

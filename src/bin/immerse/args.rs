@@ -276,6 +276,8 @@ pub(crate) enum CorrespondenceArg {
     Shape,
     /// Vertex 0 matches vertex 0.
     Identity,
+    /// Try each rule's shift and keep the shortest morph (slower).
+    Best,
 }
 
 /// Arguments of `immerse morph`.
@@ -318,8 +320,8 @@ pub(crate) struct MorphArgs {
     /// Write the frames as JSON to this file ("-" for stdout).
     #[arg(long, value_name = "FILE")]
     pub(crate) json: Option<PathBuf>,
-    /// Write images: a folder for png/svg sequences, a file for gif or
-    /// animated-svg.
+    /// Write images: a folder for PNG or SVG frame sequences, or a .gif,
+    /// .svg (animated) or .png (contact sheet) file.
     #[arg(short, long, value_name = "PATH")]
     pub(crate) output: Option<PathBuf>,
     /// Image format; by default taken from the -o extension (.gif, .svg

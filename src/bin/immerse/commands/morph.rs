@@ -35,6 +35,7 @@ impl From<CorrespondenceArg> for Correspondence {
             CorrespondenceArg::MinFlips => Correspondence::MinFlips,
             CorrespondenceArg::Pivot => Correspondence::Pivot,
             CorrespondenceArg::Identity => Correspondence::Identity,
+            CorrespondenceArg::Best => Correspondence::Best,
         }
     }
 }

@@ -14,10 +14,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let a = Curve::from_path(curves.join("ribbon-curl.svg"))?;
     let b = Curve::from_path(curves.join("tail-loop.svg"))?;
     let fractions: Vec<f64> = (0..=30).map(|i| f64::from(i) / 30.0).collect();
-    let (report, morph) =
-        morph_curves(&a.points, &b.points, &fractions, &CurveMorphOptions::DEFAULT)?;
+    let (report, morph) = morph_curves(
+        &a.points,
+        &b.points,
+        &fractions,
+        &CurveMorphOptions::DEFAULT,
+    )?;
     assert!(morph.frames.iter().all(|f| f.is_immersion()));
-    let out = std::env::args().nth(1).unwrap_or_else(|| "morph.json".to_string());
+    let out = std::env::args()
+        .nth(1)
+        .unwrap_or_else(|| "morph.json".to_string());
     std::fs::write(&out, serde_json::to_string(&morph)?)?;
     println!(
         "{} frames of {} vertices ({} flips), every one an immersed disk; wrote {out}",

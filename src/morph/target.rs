@@ -156,31 +156,68 @@ pub(crate) fn fit_similarity(p: &[Point], q: &[Point]) -> Vec<Point> {
 }
 
 /// A candidate flip: the diagonal, its quad and the crossings it removes.
+#[derive(Clone, Copy, Debug)]
 struct Candidate {
     from: (u32, u32),
     quad: [u32; 4],
     gain: i64,
 }
 
-fn candidates(cur: &FlipTriangulation, goal: &[(u32, u32)]) -> Vec<Candidate> {
-    let count = |d: (u32, u32)| goal.iter().filter(|&&g| crosses(g, d)).count() as i64;
-    let mut out: Vec<Candidate> = cur
-        .diagonals()
-        .into_iter()
-        .filter(|d| goal.binary_search(d).is_err())
-        .filter_map(|d| {
-            let (quad, _) = cur.quad(d.0, d.1)?;
-            let new = (quad[1].min(quad[3]), quad[1].max(quad[3]));
-            let gain = count(d) - count(new);
-            (gain > 0).then_some(Candidate {
-                from: d,
-                quad,
-                gain,
-            })
-        })
-        .collect();
-    out.sort_by_key(|c| (std::cmp::Reverse(c.gain), c.from));
-    out
+/// The flips that strictly lower their diagonal's crossings with the goal,
+/// kept up to date flip by flip: a flip changes only the quads of its own
+/// four sides and the new diagonal, so only those are recomputed (O(n) each
+/// for the crossing counts) instead of every diagonal.
+struct Candidates {
+    by_diagonal: std::collections::BTreeMap<(u32, u32), Candidate>,
+}
+
+impl Candidates {
+    fn new(cur: &FlipTriangulation, goal: &[(u32, u32)]) -> Candidates {
+        let mut c = Candidates {
+            by_diagonal: std::collections::BTreeMap::new(),
+        };
+        for d in cur.diagonals() {
+            c.refresh_one(cur, goal, d);
+        }
+        c
+    }
+
+    fn refresh_one(&mut self, cur: &FlipTriangulation, goal: &[(u32, u32)], d: (u32, u32)) {
+        let d = (d.0.min(d.1), d.0.max(d.1));
+        self.by_diagonal.remove(&d);
+        if goal.binary_search(&d).is_ok() {
+            return;
+        }
+        let Some((quad, _)) = cur.quad(d.0, d.1) else {
+            return;
+        };
+        let count = |c: (u32, u32)| goal.iter().filter(|&&g| crosses(g, c)).count() as i64;
+        let new = (quad[1].min(quad[3]), quad[1].max(quad[3]));
+        let gain = count(d) - count(new);
+        if gain > 0 {
+            self.by_diagonal.insert(
+                d,
+                Candidate {
+                    from: d,
+                    quad,
+                    gain,
+                },
+            );
+        }
+    }
+
+    /// Applies the flip of `c` to `cur` and updates the affected entries.
+    fn flip(&mut self, cur: &mut FlipTriangulation, goal: &[(u32, u32)], c: Candidate) {
+        cur.flip(c.from.0, c.from.1);
+        let [a, b, cc, d] = c.quad;
+        for e in [c.from, (b, d), (a, b), (b, cc), (cc, d), (d, a)] {
+            self.refresh_one(cur, goal, e);
+        }
+    }
+
+    fn iter(&self) -> impl Iterator<Item = &Candidate> {
+        self.by_diagonal.values()
+    }
 }
 
 /// Whether a flip passes validity and the angle gate in `p`; returns the
@@ -201,19 +238,23 @@ fn gate(p: &[Point], quad: [u32; 4], floor: f64) -> Option<f64> {
 
 /// Applies acceptable flips at shape `p` until none is left; returns how
 /// many.
-fn batch(cur: &mut FlipTriangulation, goal: &[(u32, u32)], p: &[Point], floor: f64) -> usize {
+fn batch(
+    cur: &mut FlipTriangulation,
+    cands: &mut Candidates,
+    goal: &[(u32, u32)],
+    p: &[Point],
+    floor: f64,
+) -> usize {
     let mut applied = 0;
     loop {
-        let cands = candidates(cur, goal);
         let best = cands
             .iter()
-            .filter_map(|c| gate(p, c.quad, floor).map(|m| (c, m)))
+            .filter_map(|c| gate(p, c.quad, floor).map(|m| (*c, m)))
             .max_by(|(c1, m1), (c2, m2)| c1.gain.cmp(&c2.gain).then(m1.total_cmp(m2)));
         let Some((c, _)) = best else {
             return applied;
         };
-        let from = c.from;
-        cur.flip(from.0, from.1);
+        cands.flip(cur, goal, c);
         applied += 1;
     }
 }
@@ -245,8 +286,9 @@ pub(crate) fn stage_target(
     let mut legs: Vec<Leg> = Vec::new();
     let (mut flips, mut unblocks, mut retargets) = (0usize, 0usize, 0usize);
     let mut blocked: Vec<bool> = Vec::new();
+    let mut cands = Candidates::new(&cur, &goal);
     // Flips acceptable in the input shape itself.
-    flips += batch(&mut cur, &goal, &x, floor);
+    flips += batch(&mut cur, &mut cands, &goal, &x, floor);
     while cur.diagonals() != goal {
         let target = target_shape(cur.triangles(), other, &disk, &blocked);
         let plan = match target {
@@ -263,7 +305,7 @@ pub(crate) fn stage_target(
         let moved = loop {
             let sh = (k as f64 * LEG_STEP).min(1.0);
             let p = plan.positions(sh, ThirdVertexPath::Hybrid);
-            let applied = batch(&mut cur, &goal, &p, floor);
+            let applied = batch(&mut cur, &mut cands, &goal, &p, floor);
             if applied > 0 || sh >= 1.0 {
                 legs.push(Leg {
                     plan,
@@ -291,7 +333,7 @@ pub(crate) fn stage_target(
         }
         unblocks += 1;
         blocked = vec![false; cur.triangles().len()];
-        for c in candidates(&cur, &goal) {
+        for c in cands.iter() {
             for [a, b, cc] in [
                 [c.quad[0], c.quad[1], c.quad[2]],
                 [c.quad[2], c.quad[3], c.quad[0]],

@@ -50,6 +50,23 @@ pub(crate) fn progress_bar(len: u64, message: &str, quiet: bool) -> ProgressBar 
     bar
 }
 
+/// A spinner on stderr for work of unknown length, ticking on its own;
+/// hidden like [`progress_bar`].
+pub(crate) fn spinner(message: &str, quiet: bool) -> ProgressBar {
+    let bar = ProgressBar::new_spinner();
+    if quiet || !std::io::stderr().is_terminal() {
+        bar.set_draw_target(ProgressDrawTarget::hidden());
+    } else {
+        bar.enable_steady_tick(std::time::Duration::from_millis(100));
+    }
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} {msg} ({elapsed})")
+            .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+    );
+    bar.set_message(message.to_string());
+    bar
+}
+
 /// Converts library points to the render crate's plain points.
 pub(crate) fn plain_points(points: &[immerse::Point]) -> Vec<[f64; 2]> {
     points.iter().map(|p| [p.x, p.y]).collect()

@@ -91,7 +91,13 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
             IntermediateArg::Disk => Intermediate::Disk,
         })
         .with_morph(MorphOptions::DEFAULT.with_path(args.path.into()));
-    let (report, morph) = match morph_curves(&src.points, &dst.points, &times, &options) {
+    let busy = super::spinner(
+        &format!("triangulating, matching and morphing {n} vertices"),
+        args.quiet || n < 300,
+    );
+    let result = morph_curves(&src.points, &dst.points, &times, &options);
+    busy.finish_and_clear();
+    let (report, morph) = match result {
         Ok(done) => done,
         Err(CurveMorphError::NotSelfOverlapping { side, reason }) if !reason.is_answer() => {
             let file = match side {

@@ -415,3 +415,42 @@ fn morph_refuses_more_frame_points_than_it_keeps_in_memory() {
         "immerse: 100000 frames of 600 points is more than 50000000 points in all; ask for fewer --frames"
     );
 }
+
+#[test]
+fn triangulate_json_has_the_design_fields_and_a_valid_triangulation() {
+    let p = curve("spiral-strip-540deg-n120-clockwise.json");
+    for quality in ["any", "delaunay", "maxmin"] {
+        let out = immerse(&[
+            "triangulate",
+            p.to_str().unwrap(),
+            "--json",
+            "--quality",
+            quality,
+        ]);
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let pts: Vec<immerse::Point> = v["points"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|q| immerse::Point::new(q[0].as_f64().unwrap(), q[1].as_f64().unwrap()))
+            .collect();
+        let tris: Vec<[u32; 3]> = serde_json::from_value(v["triangles"].clone()).unwrap();
+        assert_eq!(pts.len(), 120);
+        assert_eq!(tris.len(), 118);
+        // Oriented order (the file is clockwise) and every triangle CCW.
+        assert_eq!(v["reversed"], true);
+        assert_eq!(
+            immerse::geom::polygon::turning_number(&pts),
+            immerse::geom::polygon::Turning::Number(1)
+        );
+        assert!(immerse::immersion::check(&pts, &tris).is_ok(), "{quality}");
+        // The spine runs between two leaves; the pivot vertex is a corner
+        // of its first triangle; the root is a triangle.
+        let spine: Vec<usize> = serde_json::from_value(v["spine"].clone()).unwrap();
+        assert!(spine.len() >= 2);
+        let pivot = v["pivot_vertex"].as_u64().unwrap() as u32;
+        assert!(tris[spine[0]].contains(&pivot));
+        assert!((v["root_triangle"].as_u64().unwrap() as usize) < tris.len());
+    }
+}

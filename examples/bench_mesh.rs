@@ -4,9 +4,9 @@
 //! 99,856 interior vertices).
 //!
 //! Per-frame time is `(T(1 + k frames) − T(1 frame)) / k`: the set-up
-//! (validation, weights, symbolic analysis of the sparse LU) and the first
-//! frame's factorisation are paid once, every further frame is a warm-started
-//! preconditioned solve or a numeric refactorisation (see `src/solve.rs`).
+//! (validation, weights, the multigrid hierarchy) and the first frame's solve
+//! from zero are paid once, every further frame is a warm-started
+//! multigrid-preconditioned solve (see `src/solve.rs`).
 //! Frames are evenly spaced over [0, 1], so larger `k` means smaller steps.
 
 use immerse::mesh_morph::{MeshMorphOptions, Method, mesh_morph};

@@ -88,10 +88,12 @@ pub fn disk_for(points: &[Point], area: f64, centroid: Point) -> Vec<Point> {
         .collect()
 }
 
-/// Whether `flip` may be applied in shape `p` under the gate: both new
-/// triangles valid, and their minimum angle at least min(old pair's,
-/// `floor`). With `floor` = 0 only validity is required.
-fn flip_ok(p: &[Point], quad: [u32; 4], floor: f64) -> bool {
+/// The flip gate of DESIGN.md §7: the flip of the quad `[a, b, c, d]`
+/// (diagonal a–c to b–d) may be applied in shape `p` when both new
+/// triangles are valid and their minimum angle is at least min(the old
+/// pair's, `floor`); returns that minimum angle. With `floor` = 0 only
+/// validity is required.
+pub(crate) fn gate(p: &[Point], quad: [u32; 4], floor: f64) -> Option<f64> {
     let [a, b, c, d] = quad;
     let new = [canonical([a, b, d]), canonical([b, c, d])];
     let old = [canonical([a, b, c]), canonical([c, d, a])];
@@ -99,9 +101,14 @@ fn flip_ok(p: &[Point], quad: [u32; 4], floor: f64) -> bool {
         .iter()
         .all(|t| is_valid_triangle(p, t[0] as usize, t[1] as usize, t[2] as usize))
     {
-        return false;
+        return None;
     }
-    min_angle(p, &new) >= min_angle(p, &old).min(floor)
+    let m = min_angle(p, &new);
+    (m >= min_angle(p, &old).min(floor)).then_some(m)
+}
+
+fn flip_ok(p: &[Point], quad: [u32; 4], floor: f64) -> bool {
+    gate(p, quad, floor).is_some()
 }
 
 /// Builds the staged path from `s` (triangulated by `t_start`) to `other`

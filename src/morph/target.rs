@@ -27,12 +27,11 @@
 //! of DESIGN.md §7 finishes the job, so the procedure always ends.
 
 use super::flips::{FlipTriangulation, crosses};
-use super::incompatible::{Leg, Staged, disk_for, stage};
+use super::incompatible::{Leg, Staged, disk_for, gate, stage};
 use super::{Compatible, MorphError, ThirdVertexPath, area_and_centroid, lay_out_rooted};
 use crate::geom::Point;
-use crate::geom::polygon::min_triangle_angle as min_angle;
 use crate::geom::polygon::triangle_angles;
-use crate::immersion::{check, is_valid_triangle};
+use crate::immersion::check;
 use crate::tree::{DualTree, RootChoice};
 use std::f64::consts::{PI, TAU};
 
@@ -218,22 +217,6 @@ impl Candidates {
     fn iter(&self) -> impl Iterator<Item = &Candidate> {
         self.by_diagonal.values()
     }
-}
-
-/// Whether a flip passes validity and the angle gate in `p`; returns the
-/// new pair's minimum angle.
-fn gate(p: &[Point], quad: [u32; 4], floor: f64) -> Option<f64> {
-    let [a, b, c, d] = quad;
-    let new = [canonical([a, b, d]), canonical([b, c, d])];
-    let old = [canonical([a, b, c]), canonical([c, d, a])];
-    if !new
-        .iter()
-        .all(|t| is_valid_triangle(p, t[0] as usize, t[1] as usize, t[2] as usize))
-    {
-        return None;
-    }
-    let m = min_angle(p, &new);
-    (m >= min_angle(p, &old).min(floor)).then_some(m)
 }
 
 /// Applies acceptable flips at shape `p` until none is left; returns how
@@ -426,7 +409,9 @@ mod tests {
         let (b, _) = spiral_strip(18, 0.7, 0.25);
         let ta = triangulate_with(&a, Quality::Delaunay).unwrap().triangles;
         let tb = triangulate_with(&b, Quality::Delaunay).unwrap().triangles;
-        let floor = 0.25 * min_angle(&a, &ta).min(min_angle(&b, &tb));
+        let floor = 0.25
+            * crate::geom::polygon::min_triangle_angle(&a, &ta)
+                .min(crate::geom::polygon::min_triangle_angle(&b, &tb));
         let mut staged = stage_target(
             &a,
             &ta,

@@ -10,18 +10,9 @@ use immerse::geom::Point;
 use immerse::immersion::check;
 use immerse::morph::{CurveMorphOptions, morph_curves};
 
-/// The pairs of `curves/reference-pairs.list` ("source target" per line,
-/// `#` comments).
-fn reference_pairs() -> Vec<(String, String)> {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("curves/reference-pairs.list");
-    let text = std::fs::read_to_string(&path).expect("curves/reference-pairs.list is readable");
-    text.lines()
-        .map(|l| l.split('#').next().unwrap_or("").trim())
-        .filter(|l| !l.is_empty())
-        .filter_map(|l| l.split_once(' '))
-        .map(|(a, b)| (a.trim().to_string(), b.trim().to_string()))
-        .collect()
-}
+#[path = "../common/pairs.rs"]
+mod pairs;
+use pairs::reference_pairs;
 
 fn load(name: &str) -> Curve {
     Curve::from_path(curve(name)).unwrap_or_else(|e| panic!("{e}"))

@@ -2,7 +2,6 @@
 //! frames and a GIF. Needs no input and no network.
 
 use super::morph::write_frames;
-use super::plain_points;
 use crate::Outcome;
 use crate::args::{DemoArgs, FormatArg};
 use crate::output;
@@ -37,11 +36,7 @@ pub(crate) fn run(args: &DemoArgs) -> anyhow::Result<Outcome> {
     .context("the embedded demo curves did not morph; this is a bug in immerse")?;
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     render::write_atomic(&dir.join(MARKER), b"written by immerse demo\n", true)?;
-    let frames: Vec<render::Frame> = morph
-        .frames
-        .iter()
-        .map(|f| render::Frame::from_triangles(plain_points(&f.points), f.triangles.clone()))
-        .collect();
+    let frames = super::render_frames(&morph.frames);
     let style = render::Style::DEFAULT
         .with_size(args.size.0, args.size.1)
         .with_onion_skin(true);

@@ -35,13 +35,7 @@ struct MorphJson<'a> {
 }
 
 pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
-    if let Some(json) = &args.json
-        && json.as_os_str() != "-"
-        && !args.force
-        && json.exists()
-    {
-        anyhow::bail!("{} exists; pass --force to replace it", json.display());
-    }
+    super::refuse_existing(args.json.as_deref(), args.force)?;
     let a = Tiling::from_path(&args.source)?;
     let b = Tiling::from_path(&args.target)?;
     if args.check_linear {
@@ -109,11 +103,7 @@ pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
                 .collect(),
         };
         let text = serde_json::to_string(&doc)?;
-        if json.as_os_str() == "-" {
-            output::print(&text)?;
-        } else {
-            render::write_atomic(json, text.as_bytes(), args.force)?;
-        }
+        super::write_text(json, &text, args.force)?;
     }
     if let Some(out) = &args.output {
         let plain: Vec<render::Frame> = frames

@@ -67,6 +67,39 @@ pub(crate) fn spinner(message: &str, quiet: bool) -> ProgressBar {
     bar
 }
 
+/// Refuses, before any work, an output file that exists unless `force`
+/// ("-" is stdout and never refused).
+pub(crate) fn refuse_existing(path: Option<&std::path::Path>, force: bool) -> anyhow::Result<()> {
+    if let Some(p) = path
+        && p.as_os_str() != "-"
+        && !force
+        && p.exists()
+    {
+        anyhow::bail!("{} exists; pass --force to replace it", p.display());
+    }
+    Ok(())
+}
+
+/// Writes `text` to `path` atomically, or to stdout when `path` is "-".
+pub(crate) fn write_text(path: &std::path::Path, text: &str, force: bool) -> anyhow::Result<()> {
+    if path.as_os_str() == "-" {
+        crate::output::print(text)
+    } else {
+        immerse_render::write_atomic(path, text.as_bytes(), force)?;
+        Ok(())
+    }
+}
+
+/// The render crate's frames for a morph's frames (outline = all points).
+pub(crate) fn render_frames(frames: &[immerse::frames::Frame]) -> Vec<immerse_render::Frame> {
+    frames
+        .iter()
+        .map(|f| {
+            immerse_render::Frame::from_triangles(plain_points(&f.points), f.triangles.clone())
+        })
+        .collect()
+}
+
 /// Converts library points to the render crate's plain points.
 pub(crate) fn plain_points(points: &[immerse::Point]) -> Vec<[f64; 2]> {
     points.iter().map(|p| [p.x, p.y]).collect()

@@ -1,6 +1,6 @@
 //! `immerse morph`: frames from one curve to another.
 
-use super::{plain_points, progress_bar};
+use super::progress_bar;
 use crate::Outcome;
 use crate::args::{CorrespondenceArg, CountsArg, FormatArg, IntermediateArg, MorphArgs, PathArg};
 use crate::output;
@@ -52,13 +52,7 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         );
     }
     // Refuse to overwrite before doing any work.
-    if let Some(json) = &args.json
-        && json.as_os_str() != "-"
-        && !args.force
-        && json.exists()
-    {
-        anyhow::bail!("{} exists; pass --force to replace it", json.display());
-    }
+    super::refuse_existing(args.json.as_deref(), args.force)?;
     let src = Curve::from_path(&args.source)?;
     let dst = Curve::from_path(&args.target)?;
     if !args.quiet {
@@ -127,11 +121,7 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
     }
     if let Some(json) = &args.json {
         let text = serde_json::to_string(&morph)?;
-        if json.as_os_str() == "-" {
-            output::print(&text)?;
-        } else {
-            render::write_atomic(json, text.as_bytes(), args.force)?;
-        }
+        super::write_text(json, &text, args.force)?;
     }
     if let Some(out) = &args.output {
         write_images(args, out, &morph)?;
@@ -196,11 +186,7 @@ pub(crate) fn write_images(args: &MorphArgs, out: &Path, morph: &Morph) -> anyho
         Some("png") => FormatArg::Sheet,
         _ => FormatArg::Png,
     });
-    let frames: Vec<render::Frame> = morph
-        .frames
-        .iter()
-        .map(|f| render::Frame::from_triangles(plain_points(&f.points), f.triangles.clone()))
-        .collect();
+    let frames = super::render_frames(&morph.frames);
     let style = render::Style::DEFAULT
         .with_size(args.size.0, args.size.1)
         .with_wireframe(args.wireframe)

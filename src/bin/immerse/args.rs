@@ -353,6 +353,9 @@ pub(crate) struct MorphArgs {
     /// No progress bars or notices on stderr.
     #[arg(short, long)]
     pub(crate) quiet: bool,
+    /// Print how long each stage took (read, morph, json, images) to stderr.
+    #[arg(long)]
+    pub(crate) timings: bool,
 }
 
 /// Parses `WxH`.

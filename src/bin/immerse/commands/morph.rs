@@ -53,6 +53,7 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
     }
     // Refuse to overwrite before doing any work.
     super::refuse_existing(args.json.as_deref(), args.force)?;
+    let mut clock = Timings::new(args.timings);
     let src = Curve::from_path(&args.source)?;
     let dst = Curve::from_path(&args.target)?;
     if !args.quiet {
@@ -89,7 +90,9 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         &format!("triangulating, matching and morphing {n} vertices"),
         args.quiet || n < 300,
     );
+    clock.lap("read");
     let result = morph_curves(&src.points, &dst.points, &times, &options);
+    clock.lap("morph");
     busy.finish_and_clear();
     let (report, morph) = match result {
         Ok(done) => done,
@@ -123,9 +126,12 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         let text = serde_json::to_string(&morph)?;
         super::write_text(json, &text, args.force)?;
     }
+    clock.lap("json");
     if let Some(out) = &args.output {
         write_images(args, out, &morph)?;
     }
+    clock.lap("images");
+    clock.report();
     if args.metrics {
         let m = metrics(&morph.frames);
         let opt = |v: Option<f64>| {
@@ -172,6 +178,40 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         ));
     }
     Ok(Outcome::Success)
+}
+
+/// Per-stage wall times for `--timings`, printed to stderr.
+struct Timings {
+    on: bool,
+    last: std::time::Instant,
+    laps: Vec<(&'static str, std::time::Duration)>,
+}
+
+impl Timings {
+    fn new(on: bool) -> Timings {
+        Timings {
+            on,
+            last: std::time::Instant::now(),
+            laps: Vec::new(),
+        }
+    }
+
+    fn lap(&mut self, stage: &'static str) {
+        let now = std::time::Instant::now();
+        self.laps.push((stage, now - self.last));
+        self.last = now;
+    }
+
+    fn report(&self) {
+        if self.on {
+            let parts: Vec<String> = self
+                .laps
+                .iter()
+                .map(|(s, d)| format!("{s} {:.1} ms", d.as_secs_f64() * 1e3))
+                .collect();
+            output::note(&format!("timings: {}", parts.join(", ")));
+        }
+    }
 }
 
 /// Renders the frames to `out` in the chosen format.

@@ -162,11 +162,11 @@ impl Compatible {
             let w = rooted.third[t] as usize;
             local_src[t] = to_base_frame(src[x], src[y], src[w]);
             local_dst[t] = to_base_frame(dst[x], dst[y], dst[w]);
-            ang_src[t] = base_frame_angles(local_src[t]).ok_or(CompatibleError::NotCcw {
+            ang_src[t] = corner_angles(src, [x, y, w]).ok_or(CompatibleError::NotCcw {
                 triangle: t,
                 which: "source",
             })?;
-            ang_dst[t] = base_frame_angles(local_dst[t]).ok_or(CompatibleError::NotCcw {
+            ang_dst[t] = corner_angles(dst, [x, y, w]).ok_or(CompatibleError::NotCcw {
                 triangle: t,
                 which: "target",
             })?;
@@ -383,6 +383,20 @@ impl Compatible {
             .map(|p| want_centroid + rot.rotate(p - centroid))
             .collect()
     }
+}
+
+/// Angles at `x`, `y`, `w` of a triangle that the exact predicate says is
+/// counter-clockwise, measured from the points themselves (base-frame
+/// coordinates can round a very thin triangle to zero height). Angles that
+/// round to zero are lifted to a tiny positive value and the triple is
+/// rescaled to sum π; `None` when the triangle is not strictly CCW.
+fn corner_angles(p: &[Point], [x, y, w]: [usize; 3]) -> Option<[f64; 3]> {
+    if !crate::geom::orient(p[x], p[y], p[w]).is_ccw() {
+        return None;
+    }
+    let a = crate::geom::polygon::triangle_angles(p[x], p[y], p[w]).map(|v| v.max(1e-12));
+    let s = a[0] + a[1] + a[2];
+    Some(a.map(|v| v * std::f64::consts::PI / s))
 }
 
 fn lerp3(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {

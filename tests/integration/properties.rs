@@ -135,6 +135,8 @@ fn config(cases: u32) -> ProptestConfig {
         failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
             "tests/regressions/properties.txt",
         ))),
+        // A fixed seed keeps CI deterministic; change it locally to explore.
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x1433_25e0),
         ..ProptestConfig::default()
     }
 }

@@ -3,7 +3,7 @@
 use super::morph::write_frames;
 use super::plain_points;
 use crate::Outcome;
-use crate::args::{FormatArg, MeshMorphArgs, MethodArg, WeightsArg};
+use crate::args::{MeshMorphArgs, MethodArg, WeightsArg};
 use crate::output;
 use immerse::coords::Weights;
 use immerse::mesh_morph::{LinearCheck, MeshMorphOptions, Method, check_linear, mesh_morph};
@@ -115,16 +115,7 @@ pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
                 ..render::Frame::default()
             })
             .collect();
-        let ext = out
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase);
-        let format = args.format.unwrap_or(match ext.as_deref() {
-            Some("gif") => FormatArg::Gif,
-            Some("svg") => FormatArg::AnimatedSvg,
-            Some("png") => FormatArg::Sheet,
-            _ => FormatArg::Png,
-        });
+        let format = super::image_format(args.format, out);
         let style = render::Style::DEFAULT
             .with_size(args.size.0, args.size.1)
             .with_wireframe(true);

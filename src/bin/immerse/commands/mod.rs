@@ -100,6 +100,25 @@ pub(crate) fn render_frames(frames: &[immerse::frames::Frame]) -> Vec<immerse_re
         .collect()
 }
 
+/// The image format: the one asked for, else from `out`'s extension
+/// (.gif, .svg animated, .png contact sheet), else PNG frames in a folder.
+pub(crate) fn image_format(
+    asked: Option<crate::args::FormatArg>,
+    out: &std::path::Path,
+) -> crate::args::FormatArg {
+    use crate::args::FormatArg;
+    let ext = out
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    asked.unwrap_or(match ext.as_deref() {
+        Some("gif") => FormatArg::Gif,
+        Some("svg") => FormatArg::AnimatedSvg,
+        Some("png") => FormatArg::Sheet,
+        _ => FormatArg::Png,
+    })
+}
+
 /// Converts library points to the render crate's plain points.
 pub(crate) fn plain_points(points: &[immerse::Point]) -> Vec<[f64; 2]> {
     points.iter().map(|p| [p.x, p.y]).collect()

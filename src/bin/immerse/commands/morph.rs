@@ -216,16 +216,7 @@ impl Timings {
 
 /// Renders the frames to `out` in the chosen format.
 pub(crate) fn write_images(args: &MorphArgs, out: &Path, morph: &Morph) -> anyhow::Result<()> {
-    let ext = out
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    let format = args.format.unwrap_or(match ext.as_deref() {
-        Some("gif") => FormatArg::Gif,
-        Some("svg") => FormatArg::AnimatedSvg,
-        Some("png") => FormatArg::Sheet,
-        _ => FormatArg::Png,
-    });
+    let format = super::image_format(args.format, out);
     let frames = super::render_frames(&morph.frames);
     let style = render::Style::DEFAULT
         .with_size(args.size.0, args.size.1)

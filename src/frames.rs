@@ -52,21 +52,67 @@ impl Frame {
     }
 }
 
-/// A morph: its frames and the path that produced them.
+/// A morph: its frames, the paths that produced them and everything that
+/// did not go as asked.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Morph {
-    /// The third-vertex path actually used.
-    #[serde(serialize_with = "ser_path")]
-    pub path: ThirdVertexPath,
-    /// True when the requested path failed the exact check and `hybrid`
-    /// was used instead.
+    /// The third-vertex paths the frames were made with, in order of first
+    /// use (in JSON: `path`, one name or names joined by `+`).
+    #[serde(rename = "path", serialize_with = "ser_paths")]
+    pub paths: Vec<ThirdVertexPath>,
+    /// True when anything other than what was asked was used (another
+    /// path, the disk, another triangulation, other counts); `fallbacks`
+    /// says what and why.
     pub fallback: bool,
+    /// What was tried instead of what was asked, and why, in order.
+    pub fallbacks: Vec<Fallback>,
     /// The frames, in order of t.
     pub frames: Vec<Frame>,
 }
 
-fn ser_path<S: serde::Serializer>(p: &ThirdVertexPath, s: S) -> Result<S::Ok, S::Error> {
-    s.serialize_str(p.as_str())
+impl Morph {
+    /// The paths used, as in the JSON: one name, or names joined by `+`.
+    pub fn path_name(&self) -> String {
+        path_names(&self.paths)
+    }
+}
+
+/// Path names joined by `+`.
+pub(crate) fn path_names(paths: &[ThirdVertexPath]) -> String {
+    paths
+        .iter()
+        .map(|p| p.as_str())
+        .collect::<Vec<_>>()
+        .join("+")
+}
+
+fn ser_paths<S: serde::Serializer>(p: &[ThirdVertexPath], s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(&path_names(p))
+}
+
+/// One recovery: what was done instead of what was asked, and why.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct Fallback {
+    /// What was done, e.g. "used the hybrid path for the last leg".
+    pub what: String,
+    /// Why, e.g. the defect of the frame that failed the exact check.
+    pub why: String,
+}
+
+impl Fallback {
+    /// A fallback from its two parts.
+    pub fn new(what: &str, why: &str) -> Fallback {
+        Fallback {
+            what: what.to_string(),
+            why: why.to_string(),
+        }
+    }
+}
+
+impl std::fmt::Display for Fallback {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.what, self.why)
+    }
 }
 
 /// Quality metrics of a frame sequence (DESIGN.md §8).
@@ -90,6 +136,15 @@ pub struct Metrics {
     /// the morph to the smaller of its endpoint areas (1 means no internal
     /// collapse); `None` when the triangulation changes.
     pub smallest_area_share: Option<f64>,
+    /// Mean vertex path length over the frames divided by the mean
+    /// straight-line distance between the first and last frames under the
+    /// best cyclic shift of the last frame's vertices ([`detour`]): 1 is
+    /// straight lines; a needless spin or unwind shows as a large value.
+    pub detour: f64,
+    /// Smallest total absolute turning of any frame divided by the smaller
+    /// of the two end frames' ([`unwind`]): below 1 means overlaps were
+    /// undone and redone.
+    pub unwind: f64,
     /// Frames that pass the exact immersion check.
     pub valid_frames: usize,
     /// All frames.
@@ -169,9 +224,78 @@ pub fn metrics(frames: &[Frame]) -> Metrics {
         endpoint_min_angle_deg: end_min.to_degrees(),
         ballooning,
         smallest_area_share: share,
+        detour: detour(frames),
+        unwind: unwind(frames),
         valid_frames,
         frames: frames.len(),
     }
+}
+
+/// The detour of a frame sequence: the mean over vertices of the path
+/// length a vertex travels through the frames, divided by the mean
+/// straight-line distance between the first and last frames under the
+/// best cyclic shift of the last frame's vertices (the shift that makes
+/// that mean smallest). 1.0 is straight lines; 1.0 also when nothing
+/// moves. O(n²) for the shift search.
+pub fn detour(frames: &[Frame]) -> f64 {
+    let (Some(first), Some(last)) = (frames.first(), frames.last()) else {
+        return 1.0;
+    };
+    let n = first.points.len();
+    if n == 0 || frames.iter().any(|f| f.points.len() != n) {
+        return f64::NAN;
+    }
+    let travelled: f64 = frames
+        .windows(2)
+        .map(|w| {
+            w[0].points
+                .iter()
+                .zip(&w[1].points)
+                .map(|(a, b)| (*a - *b).length())
+                .sum::<f64>()
+        })
+        .sum();
+    let straight = (0..n)
+        .map(|k| {
+            (0..n)
+                .map(|i| (last.points[(i + k) % n] - first.points[i]).length())
+                .sum::<f64>()
+        })
+        .fold(f64::INFINITY, f64::min);
+    if straight <= 0.0 {
+        return if travelled <= 0.0 { 1.0 } else { f64::INFINITY };
+    }
+    travelled / straight
+}
+
+/// Total absolute turning of a closed polygon: the sum over vertices of
+/// the absolute exterior (turning) angle, radians. Measurement only.
+pub fn total_absolute_turning(points: &[Point]) -> f64 {
+    let n = points.len();
+    (0..n)
+        .map(|i| {
+            let a = points[(i + n - 1) % n];
+            let b = points[i];
+            let c = points[(i + 1) % n];
+            let (u, v) = (b - a, c - b);
+            u.perp_dot(v).atan2(u.dot(v)).abs()
+        })
+        .sum()
+}
+
+/// The unwind of a frame sequence: the smallest total absolute turning of
+/// any frame divided by the smaller of the two end frames' totals. Below
+/// 1 means overlaps were undone and redone.
+pub fn unwind(frames: &[Frame]) -> f64 {
+    let (Some(first), Some(last)) = (frames.first(), frames.last()) else {
+        return 1.0;
+    };
+    let ends = total_absolute_turning(&first.points).min(total_absolute_turning(&last.points));
+    let least = frames
+        .iter()
+        .map(|f| total_absolute_turning(&f.points))
+        .fold(f64::INFINITY, f64::min);
+    if ends <= 0.0 { 1.0 } else { least / ends }
 }
 
 /// Numerical rank of the matrix whose columns are `cols`, by one-sided

@@ -63,6 +63,7 @@ pub mod coords;
 pub mod correspond;
 pub mod curve;
 pub mod error;
+pub mod flip;
 pub mod frames;
 pub mod geom;
 pub mod immersion;

@@ -33,7 +33,7 @@ mod check;
 pub(crate) mod dp;
 pub(crate) mod valid;
 
-pub use check::{ImmersionDefect, check};
+pub use check::{ImmersionDefect, check, check_triangles};
 pub use valid::is_valid_triangle;
 
 use crate::curve::{MAX_COORDINATE, MIN_COORDINATE};

@@ -13,16 +13,23 @@
 //! interpolate linearly and the root edge turns at a constant rate; this is
 //! applied at every t, so nothing jumps.
 
+use super::layout::{self, lerp3};
 use super::paths::{
     RotateSlide, ThirdVertexPath, base_frame_angles, from_base_frame, to_base_frame,
 };
 use crate::geom::Point;
+use crate::geom::polygon::triangle_angles;
 use crate::tree::{DualTree, RootChoice, Rooted, root_triangle};
 use std::f64::consts::TAU;
 
 /// Default margin ε (radians) kept below 2π in every vertex fan by the
 /// hybrid path (DESIGN.md §6: about 0.05 rad).
 pub const DEFAULT_FAN_MARGIN: f64 = 0.05;
+
+/// Angle floor (radians) of the straight path: a triangle of the guide
+/// thinner than min(this, half its smallest angle in the angle rule) is
+/// lifted toward the angle rule (about 0.5°).
+pub const STRAIGHT_MIN_ANGLE: f64 = 0.5 * std::f64::consts::PI / 180.0;
 
 /// Precomputed data for morphing one compatible pair.
 #[derive(Clone, Debug)]
@@ -48,6 +55,12 @@ pub struct Compatible {
     edge_angle: f64,
     edge_turn: f64,
     fan_margin: f64,
+    /// Per triangle, its corners as (base start, base end, third).
+    corners: Vec<[usize; 3]>,
+    /// Vertex means of source and target, and the best-fit rotation
+    /// between them (the straight path's guide turns by it).
+    mean: [Point; 2],
+    turn: f64,
 }
 
 /// The interpolated placement of the root triangle: x(t) = L(t)(p − c_s) +
@@ -208,6 +221,21 @@ impl Compatible {
         let e_d = dst[y] - dst[x];
         let edge_angle = e_s.to_angle();
         let edge_turn = e_s.perp_dot(e_d).atan2(e_s.dot(e_d));
+        let corners: Vec<[usize; 3]> = (0..m)
+            .map(|t| {
+                let [x, y] = rooted.base[t].map(|v| v as usize);
+                [x, y, rooted.third[t] as usize]
+            })
+            .collect();
+        let mean = |p: &[Point]| p.iter().copied().sum::<Point>() / p.len() as f64;
+        let (mean_s, mean_d) = (mean(src), mean(dst));
+        let (mut dot, mut cross) = (0.0, 0.0);
+        for (p, q) in src.iter().zip(dst) {
+            let (u, v) = (*p - mean_s, *q - mean_d);
+            dot += u.dot(v);
+            cross += u.perp_dot(v);
+        }
+        let turn = cross.atan2(dot);
         Ok(Compatible {
             src: src.to_vec(),
             dst: dst.to_vec(),
@@ -224,6 +252,9 @@ impl Compatible {
             edge_angle,
             edge_turn,
             fan_margin,
+            corners,
+            mean: [mean_s, mean_d],
+            turn,
         })
     }
 
@@ -250,25 +281,148 @@ impl Compatible {
     /// Vertex positions at `t` along `path`. The ends are snapped: t ≤ 0
     /// gives the source exactly and t ≥ 1 the target.
     pub fn positions(&self, t: f64, path: ThirdVertexPath) -> Vec<Point> {
+        self.positions_counted(t, path).0
+    }
+
+    /// [`Compatible::positions`] and the number of triangles whose third
+    /// vertex the layout had to move by the exact orientation test.
+    pub(crate) fn positions_counted(&self, t: f64, path: ThirdVertexPath) -> (Vec<Point>, usize) {
         if t <= 0.0 {
-            return self.src.clone();
+            return (self.src.clone(), 0);
         }
         if t >= 1.0 {
-            return self.dst.clone();
+            return (self.dst.clone(), 0);
         }
         match path {
-            ThirdVertexPath::Linear | ThirdVertexPath::RotateSlide => self.propagate(t, path),
+            ThirdVertexPath::Linear | ThirdVertexPath::RotateSlide => (self.propagate(t, path), 0),
             ThirdVertexPath::Angle => {
                 let ang: Vec<[f64; 3]> = (0..self.triangles.len())
                     .map(|i| lerp3(self.ang_src[i], self.ang_dst[i], t))
                     .collect();
-                self.normalise(self.layout(&ang), t)
+                self.lay_out_normalised(&ang, t)
             }
             ThirdVertexPath::Hybrid => {
                 let ang = self.hybrid_angles(t);
-                self.normalise(self.layout(&ang), t)
+                self.lay_out_normalised(&ang, t)
+            }
+            ThirdVertexPath::Straight => {
+                let guide = self.guide(t);
+                let ang = self.straight_angles(t, &guide);
+                layout::lay_out_fitted(&self.rooted, &layout::factors(&ang), |unit| {
+                    layout::fit_similarity(unit, &guide)
+                })
             }
         }
+    }
+
+    /// The straight guide at `t`: the end shapes interpolated linearly in a
+    /// frame that turns by the best-fit rotation between them (so a shape
+    /// and its turned copy rotate instead of collapsing through the
+    /// centre). With no rotation between the ends this is the linear
+    /// morph.
+    fn guide(&self, t: f64) -> Vec<Point> {
+        let [c0, c1] = self.mean;
+        let c = c0.lerp(c1, t);
+        let spin = Point::from_angle(t * self.turn);
+        let back = Point::from_angle(-self.turn);
+        self.src
+            .iter()
+            .zip(&self.dst)
+            .map(|(&p, &q)| c + spin.rotate((p - c0) * (1.0 - t) + back.rotate(q - c1) * t))
+            .collect()
+    }
+
+    /// The angles of the guide where they are valid, projected into the
+    /// valid set where they are not (DESIGN.md §7b): a triangle that is
+    /// clockwise or thinner than the floor in the guide is blended toward
+    /// the angle rule by an amount that grows continuously from 0 (at the
+    /// floor) to 1 (inverted by at least the floor); then vertices whose fan
+    /// would pass 2π − min(ε, (2π − S_c)/2) blend their triangles toward
+    /// the angle rule, locally first and then, if still needed, all
+    /// together (the closed form of the hybrid path). Every step keeps the
+    /// angles positive with triangle sums π, so the result is valid; it is
+    /// continuous in t, and where the guide is valid with margins it is the
+    /// guide's own angle vector.
+    fn straight_angles(&self, t: f64, guide: &[Point]) -> Vec<[f64; 3]> {
+        let m = self.triangles.len();
+        let rule: Vec<[f64; 3]> = (0..m)
+            .map(|i| lerp3(self.ang_src[i], self.ang_dst[i], t))
+            .collect();
+        let mut ang: Vec<[f64; 3]> = (0..m)
+            .map(|i| {
+                let [x, y, w] = self.corners[i];
+                let c = rule[i];
+                let floor = STRAIGHT_MIN_ANGLE.min(0.5 * c[0].min(c[1]).min(c[2]));
+                let measured = triangle_angles(guide[x], guide[y], guide[w]);
+                let sum = measured[0] + measured[1] + measured[2];
+                let mu = if sum.is_nan() || sum <= 3.0 || floor <= 0.0 {
+                    1.0
+                } else {
+                    let sign =
+                        f64::from(crate::geom::orient(guide[x], guide[y], guide[w]).signum());
+                    let sigma = sign * measured[0].min(measured[1]).min(measured[2]);
+                    ((floor - sigma) / (2.0 * floor)).clamp(0.0, 1.0)
+                };
+                if mu >= 1.0 {
+                    c
+                } else {
+                    let a = measured.map(|v| v * std::f64::consts::PI / sum);
+                    lerp3(a, c, mu)
+                }
+            })
+            .collect();
+        let n = self.src.len();
+        let s_c = layout::fan_sums(n, &self.corners, &rule);
+        let cap = |v: usize| TAU - self.fan_margin.min((TAU - s_c[v]) / 2.0);
+        // Local: each over-full vertex blends its own fan.
+        let s = layout::fan_sums(n, &self.corners, &ang);
+        let local: Vec<f64> = (0..n)
+            .map(|v| {
+                let c = cap(v);
+                if s[v] > c && s[v] > s_c[v] {
+                    ((s[v] - c) / (s[v] - s_c[v])).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        for (i, a) in ang.iter_mut().enumerate() {
+            let l = self.corners[i]
+                .iter()
+                .map(|&v| local[v])
+                .fold(0.0, f64::max);
+            if l > 0.0 {
+                *a = lerp3(*a, rule[i], l);
+            }
+        }
+        // Global: whatever the local step could not settle.
+        let s = layout::fan_sums(n, &self.corners, &ang);
+        let lambda = layout::fan_blend(&s, &s_c, cap);
+        if lambda > 0.0 {
+            for (a, c) in ang.iter_mut().zip(&rule) {
+                *a = lerp3(*a, *c, lambda);
+            }
+        }
+        ang
+    }
+
+    /// Lays out an angle vector with the normalisation of the angle-based
+    /// paths: √(total area) and the area centroid interpolate linearly and
+    /// the root edge turns at a constant rate.
+    fn lay_out_normalised(&self, ang: &[[f64; 3]], t: f64) -> (Vec<Point>, usize) {
+        layout::lay_out_fitted(&self.rooted, &layout::factors(ang), |unit| {
+            let (area, centroid) = area_and_centroid(unit, &self.triangles);
+            let want_scale = (1.0 - t) * self.scale[0] + t * self.scale[1];
+            let want_centroid = self.centroid[0].lerp(self.centroid[1], t);
+            let [x, y] = self.rooted.base[self.rooted.root].map(|v| v as usize);
+            let e = unit[y] - unit[x];
+            let turn = self.edge_angle + t * self.edge_turn - e.to_angle();
+            let a = Point::from_angle(turn) * (want_scale / area.sqrt());
+            layout::Similarity {
+                a,
+                b: want_centroid - a.rotate(centroid),
+            }
+        })
     }
 
     fn third_local(&self, tri: usize, t: f64, path: ThirdVertexPath) -> Point {
@@ -323,65 +477,12 @@ impl Compatible {
             })
             .collect();
         let n = self.src.len();
-        let (mut s_b, mut s_c) = (vec![0.0; n], vec![0.0; n]);
-        for i in 0..m {
-            let corners = self.corners(i);
-            for k in 0..3 {
-                s_b[corners[k]] += ang_b[i][k];
-                s_c[corners[k]] += ang_c[i][k];
-            }
-        }
-        let mut lambda: f64 = 0.0;
-        for v in 0..n {
-            let cap = TAU - self.fan_margin.min((TAU - s_c[v]) / 2.0);
-            if s_b[v] > cap && s_b[v] > s_c[v] {
-                lambda = lambda.max((s_b[v] - cap) / (s_b[v] - s_c[v]));
-            }
-        }
-        let lambda = lambda.clamp(0.0, 1.0);
+        let s_b = layout::fan_sums(n, &self.corners, &ang_b);
+        let s_c = layout::fan_sums(n, &self.corners, &ang_c);
+        let lambda = layout::fan_blend(&s_b, &s_c, |v| {
+            TAU - self.fan_margin.min((TAU - s_c[v]) / 2.0)
+        });
         (0..m).map(|i| lerp3(ang_b[i], ang_c[i], lambda)).collect()
-    }
-
-    /// The vertices of triangle `i` in the order of its angle triple: base
-    /// start, base end, third.
-    fn corners(&self, i: usize) -> [usize; 3] {
-        let [x, y] = self.rooted.base[i].map(|v| v as usize);
-        [x, y, self.rooted.third[i] as usize]
-    }
-
-    /// Lays the triangles out from their angles, root edge from (0,0) to
-    /// (1,0); unique up to a similarity.
-    fn layout(&self, ang: &[[f64; 3]]) -> Vec<Point> {
-        let mut pos = vec![Point::ZERO; self.src.len()];
-        let root = self.rooted.root;
-        let [x, y, _] = self.corners(root);
-        pos[x] = Point::ZERO;
-        pos[y] = Point::X;
-        for &tri in &self.rooted.order {
-            let [x, y, w] = self.corners(tri);
-            let [ax, ay, aw] = ang[tri];
-            // Law of sines: |xw| / |xy| = sin(ay) / sin(aw).
-            let ratio = ay.sin() / aw.sin();
-            let e = pos[y] - pos[x];
-            pos[w] = pos[x] + Point::from_angle(ax).rotate(e) * ratio;
-        }
-        pos
-    }
-
-    /// The similarity that makes √area and the area centroid interpolate
-    /// linearly and turns the root edge at a constant rate.
-    fn normalise(&self, pos: Vec<Point>, t: f64) -> Vec<Point> {
-        let (area, centroid) = area_and_centroid(&pos, &self.triangles);
-        let want_scale = (1.0 - t) * self.scale[0] + t * self.scale[1];
-        let want_centroid = self.centroid[0].lerp(self.centroid[1], t);
-        let [x, y] = self.rooted.base[self.rooted.root].map(|v| v as usize);
-        let e = pos[y] - pos[x];
-        let turn = self.edge_angle + t * self.edge_turn - e.to_angle();
-        let k = want_scale / area.sqrt();
-        let rot = Point::from_angle(turn) * k;
-        pos.into_iter()
-            .map(|p| want_centroid + rot.rotate(p - centroid))
-            .collect()
     }
 }
 
@@ -397,14 +498,6 @@ fn corner_angles(p: &[Point], [x, y, w]: [usize; 3]) -> Option<[f64; 3]> {
     let a = crate::geom::polygon::triangle_angles(p[x], p[y], p[w]).map(|v| v.max(1e-12));
     let s = a[0] + a[1] + a[2];
     Some(a.map(|v| v * std::f64::consts::PI / s))
-}
-
-fn lerp3(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {
-    [
-        a[0] + (b[0] - a[0]) * t,
-        a[1] + (b[1] - a[1]) * t,
-        a[2] + (b[2] - a[2]) * t,
-    ]
 }
 
 /// Total area of the triangles (overlaps counted with multiplicity) and
@@ -450,24 +543,16 @@ pub fn lay_out(
 /// [`lay_out`] from a given rooting of the dual tree (a root near the
 /// tree's centre keeps the propagation depth, and so the rounding, small).
 pub fn lay_out_rooted(rooted: &Rooted, triangles: &[[u32; 3]], angles: &[[f64; 3]]) -> Vec<Point> {
-    let n = triangles.len() + 2;
-    let mut pos = vec![Point::ZERO; n];
-    let [x0, y0] = rooted.base[rooted.root].map(|v| v as usize);
-    pos[x0] = Point::ZERO;
-    pos[y0] = Point::X;
-    for &tri in &rooted.order {
-        let [x, y] = rooted.base[tri];
-        let w = rooted.third[tri];
-        let corner = |v: u32| {
-            let k = triangles[tri].iter().position(|&c| c == v).unwrap_or(0);
-            angles[tri][k]
-        };
-        let (ax, ay, aw) = (corner(x), corner(y), corner(w));
-        let (x, y, w) = (x as usize, y as usize, w as usize);
-        let e = pos[y] - pos[x];
-        pos[w] = pos[x] + Point::from_angle(ax).rotate(e) * (ay.sin() / aw.sin());
-    }
-    pos
+    let ordered: Vec<[f64; 3]> = (0..triangles.len())
+        .map(|tri| {
+            let [x, y] = rooted.base[tri];
+            [x, y, rooted.third[tri]].map(|v| {
+                let k = triangles[tri].iter().position(|&c| c == v).unwrap_or(0);
+                angles[tri][k]
+            })
+        })
+        .collect();
+    layout::place(rooted, &layout::factors(&ordered), Point::ZERO, Point::X).0
 }
 
 #[cfg(test)]
@@ -724,7 +809,7 @@ pub(crate) mod tests {
                 assert_eq!(morph.frames[200].points, b);
                 if morph.fallback {
                     fell_back += 1;
-                    assert_eq!(morph.path, ThirdVertexPath::Hybrid);
+                    assert_eq!(morph.paths, [ThirdVertexPath::Hybrid]);
                     assert!(!path.is_guaranteed());
                 }
             }

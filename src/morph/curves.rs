@@ -1,11 +1,11 @@
 //! Morphing two curves end to end: equal vertex counts, triangulation,
 //! correspondence, then the morph (DESIGN.md §5–7).
 
-use super::Staged;
 use super::flips::crossings_per_shift;
-use super::{MorphError, MorphOptions, ThirdVertexPath};
+use super::staged::SideInput;
+use super::{MorphError, MorphOptions, Staged, ThirdVertexPath};
 use crate::correspond::{insert_vertices, resample_arc_length, shift_triangles};
-use crate::frames::{Frame, Morph};
+use crate::frames::{Fallback, Morph};
 use crate::geom::Point;
 use crate::geom::polygon::min_triangle_angle as min_angle;
 use crate::immersion::{Immersion, NotSelfOverlapping};
@@ -19,7 +19,9 @@ pub enum Counts {
     #[default]
     Insert,
     /// Resample both curves evenly by arc length to the larger count
-    /// (original vertices move onto the resampled positions).
+    /// (original vertices move onto the resampled positions). Where that
+    /// would make a curve not self-overlapping, vertices are inserted
+    /// instead and the report's fallbacks say so.
     Resample,
 }
 
@@ -118,6 +120,14 @@ pub enum CurveMorphError {
         side: Side,
         /// Why.
         reason: NotSelfOverlapping,
+    },
+    /// A fraction is not a number in [0, 1].
+    #[error("frame fraction {value} (at position {index}) is not a number in [0, 1]")]
+    Fraction {
+        /// Its position in the list.
+        index: usize,
+        /// The value given.
+        value: f64,
     },
     /// The morph failed.
     #[error(transparent)]
@@ -286,7 +296,7 @@ pub fn choose_shift(
     }
 }
 
-/// What [`morph_curves`] did.
+/// What [`morph_curves`] (and [`super::Tween`]) did.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MorphReport {
     /// Vertices of each curve after equalising counts.
@@ -297,8 +307,8 @@ pub struct MorphReport {
     /// Flips on the side used.
     pub flips: usize,
     /// Where the source's side reached the target's triangulation: on the
-    /// disk route the disk parameter (0 when no flip was needed, 1 at the
-    /// disk); on the target route the number of re-targeted legs.
+    /// disk route the fraction of the way to the disk (0 when no flip was
+    /// needed); on the target route the number of legs toward a target.
     pub u_star: f64,
     /// The same from the target's side.
     pub v_star: f64,
@@ -309,6 +319,24 @@ pub struct MorphReport {
     /// True when the side used needed the disk (always for the disk
     /// route; a fallback for the target route).
     pub used_disk: bool,
+    /// The third-vertex paths of the side used, in order of first use.
+    pub paths: Vec<ThirdVertexPath>,
+    /// What was done instead of what was asked, and why, in order.
+    pub fallbacks: Vec<Fallback>,
+    /// Triangles whose third vertex the layout moved by the exact
+    /// orientation test (rounding repairs), over every checked sample.
+    pub repairs: usize,
+}
+
+/// Checks that every fraction is a number in [0, 1].
+fn check_fractions(fractions: &[f64]) -> Result<(), CurveMorphError> {
+    match fractions.iter().position(|f| !(0.0..=1.0).contains(f)) {
+        Some(index) => Err(CurveMorphError::Fraction {
+            index,
+            value: fractions[index],
+        }),
+        None => Ok(()),
+    }
 }
 
 /// Morphs curve `a` into curve `b` (both oriented, turning number +1).
@@ -319,149 +347,185 @@ pub struct MorphReport {
 /// Both curves are brought to equal counts and triangulated; a cyclic
 /// shift matches their vertices; each curve is then staged toward the
 /// other's triangulation (DESIGN.md §7) and the side that gets there first
-/// is used, so `morph_curves(a, b)` is `morph_curves(b, a)` reversed.
+/// is used, so `morph_curves(a, b)` is `morph_curves(b, a)` reversed. This
+/// is a loop over [`super::Tween::frame`]; build a [`super::Tween`] to ask
+/// for frames one at a time.
 ///
 /// # Errors
 ///
-/// [`CurveMorphError`]: a curve is not self-overlapping, or (a bug) the
-/// morph failed.
+/// [`CurveMorphError`]: a curve is not self-overlapping, a fraction is not
+/// in [0, 1], or (a bug) the morph failed.
 pub fn morph_curves(
     a: &[Point],
     b: &[Point],
     fractions: &[f64],
     options: &CurveMorphOptions,
 ) -> Result<(MorphReport, Morph), CurveMorphError> {
-    let (a, b) = equal_counts(a, b, options.counts);
+    check_fractions(fractions)?;
+    let tween = super::Tween::new(a, b, options)?;
+    let morph = tween.morph(fractions)?;
+    let mut report = tween.report().clone();
+    report.fallbacks.clone_from(&morph.fallbacks);
+    Ok((report, morph))
+}
+
+/// Both sides of the morph for one shift, and which one to use.
+pub(crate) struct Sides {
+    pub(crate) k: usize,
+    pub(crate) a: Result<Staged, MorphError>,
+    pub(crate) b: Result<Staged, MorphError>,
+    pub(crate) use_a: bool,
+}
+
+/// The curves after equalising counts and triangulating, with what that
+/// took.
+pub(crate) struct Prepared {
+    pub(crate) a: Vec<Point>,
+    pub(crate) b: Vec<Point>,
+    pub(crate) ta: Vec<[u32; 3]>,
+    pub(crate) tb: Vec<[u32; 3]>,
+    pub(crate) fallbacks: Vec<Fallback>,
+}
+
+/// Equalises counts (falling back from resampling to insertion when
+/// resampling would make a curve not self-overlapping) and triangulates.
+pub(crate) fn prepare(
+    a: &[Point],
+    b: &[Point],
+    counts: Counts,
+    quality: Quality,
+) -> Result<Prepared, CurveMorphError> {
+    let mut fallbacks = Vec::new();
+    if counts == Counts::Resample {
+        let (ra, rb) = equal_counts(a, b, Counts::Resample);
+        let tried = [(&ra, Side::Source), (&rb, Side::Target)]
+            .map(|(p, side)| triangulate_with(p, quality).map_err(|reason| (side, reason)));
+        match tried {
+            [Ok(ta), Ok(tb)] => {
+                return Ok(Prepared {
+                    a: ra,
+                    b: rb,
+                    ta: ta.triangles,
+                    tb: tb.triangles,
+                    fallbacks,
+                });
+            }
+            [Err((side, reason)), _] | [_, Err((side, reason))] => {
+                // Is the user's curve itself self-overlapping? Then the
+                // resampling did it: insert vertices instead, and say so.
+                let original = if side == Side::Source { a } else { b };
+                triangulate_side(original, quality, side)?;
+                fallbacks.push(Fallback::new(
+                    "inserted vertices instead of resampling",
+                    &format!(
+                        "resampling the {side} curve by arc length made it not self-overlapping ({reason})"
+                    ),
+                ));
+            }
+        }
+    }
+    let (a, b) = equal_counts(a, b, Counts::Insert);
+    let ta = triangulate_side(&a, quality, Side::Source)?.triangles;
+    let tb = triangulate_side(&b, quality, Side::Target)?.triangles;
+    Ok(Prepared {
+        a,
+        b,
+        ta,
+        tb,
+        fallbacks,
+    })
+}
+
+/// Builds both sides for the shift `k` and picks the one to use.
+pub(crate) fn sides(p: &Prepared, k: usize, options: &CurveMorphOptions) -> Sides {
+    let (a, b, ta, tb) = (&p.a, &p.b, &p.ta, &p.tb);
     let n = a.len();
-    let ta = triangulate_side(&a, options.quality, Side::Source)?.triangles;
-    let tb = triangulate_side(&b, options.quality, Side::Target)?.triangles;
     let m = &options.morph;
-    let floor = 0.25 * min_angle(&a, &ta).min(min_angle(&b, &tb));
+    let floor = 0.25 * min_angle(a, ta).min(min_angle(b, tb));
+    let b_in_a: Vec<Point> = (0..n).map(|i| b[(i + k) % n]).collect();
+    let tb_in_a = shift_triangles(n, tb, k);
+    let a_in_b: Vec<Point> = (0..n).map(|j| a[(j + n - k) % n]).collect();
+    let ta_in_b = shift_triangles(n, ta, (n - k) % n);
+    let leg_path = if m.path.is_guaranteed() {
+        m.path
+    } else {
+        ThirdVertexPath::Hybrid
+    };
+    let side = |s: &[Point], t: &[[u32; 3]], o: &[Point], to: &[[u32; 3]]| {
+        Staged::build(&SideInput {
+            s,
+            t_start: t,
+            other: o,
+            t_other: to,
+            leg_path,
+            final_path: m.path,
+            root: m.root,
+            margin: m.fan_margin,
+            intermediate: options.intermediate,
+            floor,
+        })
+    };
+    let side_a = side(a, ta, &b_in_a, &tb_in_a);
+    let side_b = side(b, tb, &a_in_b, &ta_in_b);
     let lex = |p: &[Point]| -> Vec<u64> {
         p.iter()
             .flat_map(|q| [q.x.to_bits(), q.y.to_bits()])
             .collect()
     };
-    let a_first = lex(&a) <= lex(&b);
-    // Both sides for the shift k, and whether side A is the one to use.
-    let sides = |k: usize| -> Result<(Staged, Staged, bool), CurveMorphError> {
-        let b_in_a: Vec<Point> = (0..n).map(|i| b[(i + k) % n]).collect();
-        let tb_in_a = shift_triangles(n, &tb, k);
-        let a_in_b: Vec<Point> = (0..n).map(|j| a[(j + n - k) % n]).collect();
-        let ta_in_b = shift_triangles(n, &ta, (n - k) % n);
-        let side = |s: &[Point], t: &[[u32; 3]], o: &[Point], to: &[[u32; 3]]| {
-            Staged::new(
-                s,
-                t,
-                o,
-                to,
-                m.path,
-                m.root,
-                m.fan_margin,
-                options.intermediate,
-                floor,
-            )
-        };
-        let side_a = side(&a, &ta, &b_in_a, &tb_in_a)?;
-        let side_b = side(&b, &tb, &a_in_b, &ta_in_b)?;
-        // The disk route compares where each side reaches the other
-        // triangulation (seed 004); the target route compares path lengths.
-        let (ka, kb) = match options.intermediate {
-            Intermediate::Disk => (side_a.u_star, side_b.u_star),
-            Intermediate::Target => (side_a.path_length(), side_b.path_length()),
-        };
-        let use_a = match ka.total_cmp(&kb) {
-            std::cmp::Ordering::Less => true,
-            std::cmp::Ordering::Greater => false,
-            std::cmp::Ordering::Equal => a_first,
-        };
-        Ok((side_a, side_b, use_a))
+    // The disk route compares where each side reaches the other
+    // triangulation (Mukherjee & Gopi); the target route compares path
+    // lengths. A side that failed loses.
+    let key = |s: &Result<Staged, MorphError>| match s {
+        Ok(s) => match options.intermediate {
+            Intermediate::Disk => s.u_star,
+            Intermediate::Target => s.path_length(),
+        },
+        Err(_) => f64::INFINITY,
     };
-    let (k, (side_a, side_b, use_a)) = if options.correspondence == Correspondence::Best {
-        // Try the shift of every other rule; keep the shortest morph (ties
-        // to the earlier rule, whose order is the same in both directions).
-        let mut best: Option<(f64, usize, (Staged, Staged, bool))> = None;
-        let mut tried: Vec<usize> = Vec::new();
-        for rule in [
-            Correspondence::MinFlips,
-            Correspondence::Pivot,
-            Correspondence::Shape,
-            Correspondence::Identity,
-        ] {
-            let k = choose_shift(&a, &b, &ta, &tb, rule);
-            if tried.contains(&k) {
-                continue;
-            }
-            tried.push(k);
-            let s = sides(k)?;
-            let length = if s.2 {
-                s.0.path_length()
-            } else {
-                s.1.path_length()
-            };
-            if best.as_ref().is_none_or(|(l, _, _)| length < *l) {
-                best = Some((length, k, s));
-            }
+    let use_a = match key(&side_a).total_cmp(&key(&side_b)) {
+        std::cmp::Ordering::Less => true,
+        std::cmp::Ordering::Greater => false,
+        std::cmp::Ordering::Equal => lex(a) <= lex(b),
+    };
+    Sides {
+        k,
+        a: side_a,
+        b: side_b,
+        use_a,
+    }
+}
+
+/// The shift and sides the options ask for: one rule's shift, or for
+/// [`Correspondence::Best`] the shortest morph over every rule's shift.
+pub(crate) fn plan_sides(p: &Prepared, options: &CurveMorphOptions) -> Sides {
+    if options.correspondence != Correspondence::Best {
+        let k = choose_shift(&p.a, &p.b, &p.ta, &p.tb, options.correspondence);
+        return sides(p, k, options);
+    }
+    // Try the shift of every other rule; keep the shortest morph (ties to
+    // the earlier rule, whose order is the same in both directions).
+    let mut best: Option<(f64, Sides)> = None;
+    let mut tried: Vec<usize> = Vec::new();
+    for rule in [
+        Correspondence::MinFlips,
+        Correspondence::Pivot,
+        Correspondence::Shape,
+        Correspondence::Identity,
+    ] {
+        let k = choose_shift(&p.a, &p.b, &p.ta, &p.tb, rule);
+        if tried.contains(&k) {
+            continue;
         }
-        match best {
-            Some((_, k, s)) => (k, s),
-            None => (0, sides(0)?),
+        tried.push(k);
+        let s = sides(p, k, options);
+        let chosen = if s.use_a { &s.a } else { &s.b };
+        let length = chosen.as_ref().map_or(f64::INFINITY, Staged::path_length);
+        if best.as_ref().is_none_or(|(l, _)| length < *l) {
+            best = Some((length, s));
         }
-    } else {
-        let k = choose_shift(&a, &b, &ta, &tb, options.correspondence);
-        (k, sides(k)?)
-    };
-    let report = |used: Side, chosen: &Staged| MorphReport {
-        n,
-        shift: k,
-        flips: chosen.flips,
-        u_star: side_a.u_star,
-        v_star: side_b.u_star,
-        used,
-        unblocks: chosen.unblocks,
-        used_disk: chosen.used_disk,
-    };
-    if use_a {
-        let mut side = side_a.clone();
-        let (frames, fallback) = side.frames(fractions)?;
-        let path = if fallback {
-            ThirdVertexPath::Hybrid
-        } else {
-            m.path
-        };
-        Ok((
-            report(Side::Source, &side_a),
-            Morph {
-                path,
-                fallback,
-                frames,
-            },
-        ))
-    } else {
-        let mut side = side_b.clone();
-        let back: Vec<f64> = fractions.iter().rev().map(|f| 1.0 - f).collect();
-        let (frames, fallback) = side.frames(&back)?;
-        let frames = frames
-            .into_iter()
-            .rev()
-            .map(|f| Frame {
-                t: 1.0 - f.t,
-                points: (0..n).map(|i| f.points[(i + k) % n]).collect(),
-                triangles: shift_triangles(n, &f.triangles, k),
-            })
-            .collect();
-        let path = if fallback {
-            ThirdVertexPath::Hybrid
-        } else {
-            m.path
-        };
-        Ok((
-            report(Side::Target, &side_b),
-            Morph {
-                path,
-                fallback,
-                frames,
-            },
-        ))
+    }
+    match best {
+        Some((_, s)) => s,
+        None => sides(p, 0, options),
     }
 }

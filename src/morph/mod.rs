@@ -4,22 +4,26 @@
 mod compatible;
 mod curves;
 pub mod flips;
-mod incompatible;
+mod layout;
 mod paths;
+mod staged;
 mod target;
+mod tween;
 
 pub use compatible::{
-    Compatible, CompatibleError, DEFAULT_FAN_MARGIN, area_and_centroid, lay_out, lay_out_rooted,
+    Compatible, CompatibleError, DEFAULT_FAN_MARGIN, STRAIGHT_MIN_ANGLE, area_and_centroid,
+    lay_out, lay_out_rooted,
 };
 pub use curves::{
     Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, MorphReport, Side,
     choose_shift, equal_counts, morph_curves, shape_cost_per_shift, triangulate_side,
 };
-pub use incompatible::{SCHEDULE_STEP, Staged, disk_for};
 pub use paths::ThirdVertexPath;
+pub use staged::{LEG_STEP, SCHEDULE_STEP, Staged, disk_for};
 pub use target::{TARGET_FAN_MARGIN, TARGET_MIN_ANGLE};
+pub use tween::Tween;
 
-use crate::frames::{Frame, Morph};
+use crate::frames::{Fallback, Frame, Morph};
 use crate::tree::RootChoice;
 
 /// Options of a morph.
@@ -88,6 +92,9 @@ pub enum MorphError {
         /// What the checker found.
         defect: String,
     },
+    /// A frame was asked for at a parameter that is not in [0, 1].
+    #[error("frame parameter {0} is not a number in [0, 1]")]
+    Fraction(f64),
 }
 
 /// Morphs two curves that share the triangulation `triangles`, producing
@@ -140,27 +147,33 @@ pub fn morph_with(
         }
         Ok(frames)
     };
-    match build(path) {
-        Ok(frames) => Ok(Morph {
-            path,
-            fallback: false,
-            frames,
-        }),
-        Err((t, defect)) if !path.is_guaranteed() => {
-            let _ = (t, defect);
-            match build(ThirdVertexPath::Hybrid) {
-                Ok(frames) => Ok(Morph {
-                    path: ThirdVertexPath::Hybrid,
-                    fallback: true,
+    let mut fallbacks = Vec::new();
+    let mut last = (0.0, String::new());
+    for (k, p) in staged::recovery_paths(path).into_iter().enumerate() {
+        if k > 0 && !p.is_guaranteed() {
+            continue;
+        }
+        match build(p) {
+            Ok(frames) => {
+                return Ok(Morph {
+                    paths: vec![p],
+                    fallback: k > 0,
+                    fallbacks,
                     frames,
-                }),
-                Err((t, defect)) => Err(MorphError::InvalidFrame {
-                    t,
-                    path: ThirdVertexPath::Hybrid,
-                    defect,
-                }),
+                });
+            }
+            Err((t, defect)) => {
+                fallbacks.push(Fallback::new(
+                    &format!("did not use the {p} path"),
+                    &format!("its frame at t = {t} is not an immersion ({defect})"),
+                ));
+                last = (t, defect);
             }
         }
-        Err((t, defect)) => Err(MorphError::InvalidFrame { t, path, defect }),
     }
+    Err(MorphError::InvalidFrame {
+        t: last.0,
+        path,
+        defect: last.1,
+    })
 }

@@ -27,12 +27,19 @@ pub enum ThirdVertexPath {
     /// distortion.
     #[default]
     Hybrid,
+    /// As straight as validity allows: the end shapes interpolated
+    /// linearly (in a frame turning by their best-fit rotation), projected
+    /// into the valid angle set only where that interpolation is invalid.
+    /// An immersion for every t; where the linear morph is valid, it is the
+    /// linear morph.
+    Straight,
 }
 
 impl ThirdVertexPath {
     /// All paths, in the order of the CLI's possible values.
-    pub const ALL: [ThirdVertexPath; 4] = [
+    pub const ALL: [ThirdVertexPath; 5] = [
         ThirdVertexPath::Hybrid,
+        ThirdVertexPath::Straight,
         ThirdVertexPath::Angle,
         ThirdVertexPath::RotateSlide,
         ThirdVertexPath::Linear,
@@ -45,12 +52,16 @@ impl ThirdVertexPath {
             ThirdVertexPath::RotateSlide => "rotate-slide",
             ThirdVertexPath::Angle => "angle",
             ThirdVertexPath::Hybrid => "hybrid",
+            ThirdVertexPath::Straight => "straight",
         }
     }
 
     /// True for the paths that guarantee an immersion for every t.
     pub fn is_guaranteed(self) -> bool {
-        matches!(self, ThirdVertexPath::Angle | ThirdVertexPath::Hybrid)
+        matches!(
+            self,
+            ThirdVertexPath::Angle | ThirdVertexPath::Hybrid | ThirdVertexPath::Straight
+        )
     }
 }
 
@@ -66,7 +77,9 @@ impl std::str::FromStr for ThirdVertexPath {
         ThirdVertexPath::ALL
             .into_iter()
             .find(|p| p.as_str() == s)
-            .ok_or_else(|| format!("unknown path '{s}'; use hybrid, angle, rotate-slide or linear"))
+            .ok_or_else(|| {
+                format!("unknown path '{s}'; use hybrid, straight, angle, rotate-slide or linear")
+            })
     }
 }
 

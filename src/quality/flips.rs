@@ -25,119 +25,15 @@
 //! the loop terminates; the result is locally Delaunay everywhere (for a
 //! simple polygon: its constrained Delaunay triangulation).
 //!
-//! The combinatorics ([`Adjacency`]) work on indices only; coordinates enter
+//! The combinatorics ([`crate::flip::FlipTriangulation`], shared with the
+//! staged morph) work on indices only; coordinates enter
 //! only through the in-circle test. Complexity: O(n) per pass over the
 //! stack plus O(1) per flip; the number of flips is O(n²) in the worst case.
 
-use std::collections::HashMap;
-
+use crate::flip::{FlipTriangulation, key};
 use crate::geom::Point;
 use crate::geom::predicates::in_circle;
 use crate::immersion::Immersion;
-
-const NONE: u32 = u32::MAX;
-
-/// An undirected edge, smaller index first.
-type Edge = (u32, u32);
-
-fn edge(a: u32, b: u32) -> Edge {
-    (a.min(b), a.max(b))
-}
-
-/// The corner of `t` that is not on edge `e`.
-fn third(t: [u32; 3], e: Edge) -> u32 {
-    t.into_iter()
-        .find(|&v| v != e.0 && v != e.1)
-        .unwrap_or(NONE)
-}
-
-/// Rotate the counter-clockwise triangle `t` (corners increasing) so that
-/// `apex` comes last: returns `(a, b)` with `(a, b, apex)` counter-clockwise.
-fn ccw_base(t: [u32; 3], apex: u32) -> (u32, u32) {
-    match t.iter().position(|&v| v == apex) {
-        Some(0) => (t[1], t[2]),
-        Some(1) => (t[2], t[0]),
-        _ => (t[0], t[1]),
-    }
-}
-
-fn sorted(mut t: [u32; 3]) -> [u32; 3] {
-    t.sort_unstable();
-    t
-}
-
-/// Edge → incident triangles of a triangulated polygon (index-only).
-#[derive(Debug, Default)]
-pub(crate) struct Adjacency {
-    /// For each edge: the (one or two) triangles on it and whether it is
-    /// currently on the stack.
-    edges: HashMap<Edge, ([u32; 2], bool)>,
-}
-
-impl Adjacency {
-    pub(crate) fn new(triangles: &[[u32; 3]]) -> Self {
-        let mut edges: HashMap<Edge, ([u32; 2], bool)> =
-            HashMap::with_capacity(triangles.len() * 2);
-        for (t, &[a, b, c]) in triangles.iter().enumerate() {
-            for e in [edge(a, b), edge(b, c), edge(a, c)] {
-                let entry = edges.entry(e).or_insert(([NONE, NONE], false));
-                if entry.0[0] == NONE {
-                    entry.0[0] = t as u32;
-                } else {
-                    entry.0[1] = t as u32;
-                }
-            }
-        }
-        Self { edges }
-    }
-
-    /// The two triangles of a diagonal, or `None` for a polygon edge.
-    pub(crate) fn pair(&self, e: Edge) -> Option<[u32; 2]> {
-        self.edges
-            .get(&e)
-            .and_then(|&(t, _)| (t[1] != NONE).then_some(t))
-    }
-
-    /// Mark `e` queued; returns whether it was a diagonal not yet queued.
-    fn enqueue(&mut self, e: Edge) -> bool {
-        match self.edges.get_mut(&e) {
-            Some((t, queued)) if t[1] != NONE && !*queued => {
-                *queued = true;
-                true
-            }
-            _ => false,
-        }
-    }
-
-    fn dequeue(&mut self, e: Edge) {
-        if let Some((_, queued)) = self.edges.get_mut(&e) {
-            *queued = false;
-        }
-    }
-
-    /// Replace triangle `from` by `to` on edge `e`.
-    fn retarget(&mut self, e: Edge, from: u32, to: u32) {
-        if let Some((t, _)) = self.edges.get_mut(&e) {
-            for x in t.iter_mut() {
-                if *x == from {
-                    *x = to;
-                }
-            }
-        }
-    }
-
-    /// Flip the diagonal `ab` of the triangles `t0 = (a, b, c)` and
-    /// `t1 = (b, a, d)` (both counter-clockwise) to `cd`, updating
-    /// `triangles` and the adjacency.
-    fn flip(&mut self, triangles: &mut [[u32; 3]], [t0, t1]: [u32; 2], [a, b, c, d]: [u32; 4]) {
-        triangles[t0 as usize] = sorted([a, d, c]);
-        triangles[t1 as usize] = sorted([d, b, c]);
-        self.edges.remove(&edge(a, b));
-        self.edges.insert(edge(c, d), ([t0, t1], false));
-        self.retarget(edge(a, d), t1, t0);
-        self.retarget(edge(b, c), t0, t1);
-    }
-}
 
 /// Flip an immersion triangulation to an immersed Delaunay one (seed 004
 /// Algorithm 1; module docs). The points are unchanged, only the triangles.
@@ -165,54 +61,48 @@ impl Adjacency {
 /// # Ok::<(), immerse::immersion::NotSelfOverlapping>(())
 /// ```
 pub fn improve(imm: Immersion) -> Immersion {
-    let Immersion {
-        points,
-        mut triangles,
-    } = imm;
+    let Immersion { points, triangles } = imm;
     // Termination and validity rest on the input being an immersion
     // triangulation; anything else is returned unchanged (O(n log n) check).
     if crate::immersion::check(&points, &triangles).is_err() {
         return Immersion { points, triangles };
     }
-    let mut adj = Adjacency::new(&triangles);
-    let mut stack: Vec<Edge> = adj.edges.keys().copied().collect();
-    stack.sort_unstable(); // deterministic order
-    stack.retain(|&e| adj.enqueue(e));
+    let n = points.len();
+    let mut tri = FlipTriangulation::new(n, &triangles);
+    let mut stack: Vec<(u32, u32)> = tri.diagonals();
+    let mut queued: rustc_hash::FxHashSet<(u32, u32)> = stack.iter().copied().collect();
+    // Popped from the largest: deterministic.
     while let Some(e) = stack.pop() {
-        adj.dequeue(e);
-        let Some([t0, t1]) = adj.pair(e) else {
+        queued.remove(&e);
+        // The quad [a, b, c, d] in cyclic order around diagonal a–c, with
+        // (a, b, c) counter-clockwise; d across a–c.
+        let Some(([a, b, c, d], _)) = tri.quad(e.0, e.1) else {
             continue;
         };
-        let c = third(triangles[t0 as usize], e);
-        let d = third(triangles[t1 as usize], e);
-        if c == NONE || d == NONE {
-            continue;
-        }
-        let (a, b) = ccw_base(triangles[t0 as usize], c);
         if !is_flippable(&points, a, b, c, d) {
             continue;
         }
-        adj.flip(&mut triangles, [t0, t1], [a, b, c, d]);
+        tri.flip(a, c);
         debug_assert!(
-            [triangles[t0 as usize], triangles[t1 as usize]]
-                .iter()
-                .all(|&[x, y, z]| {
-                    crate::immersion::is_valid_triangle(&points, x as usize, y as usize, z as usize)
-                }),
+            [[a, b, d], [b, c, d]].iter().all(|&[x, y, z]| {
+                crate::immersion::is_valid_triangle(&points, x as usize, y as usize, z as usize)
+            }),
             "a Delaunay flip produced an invalid triangle: a bug"
         );
-        for q in [edge(a, c), edge(c, b), edge(b, d), edge(d, a)] {
-            if adj.enqueue(q) {
+        for q in [key(a, b), key(b, c), key(c, d), key(d, a)] {
+            if q.1 - q.0 != 1 && q.1 - q.0 != n as u32 - 1 && queued.insert(q) {
                 stack.push(q);
             }
         }
     }
+    let mut triangles = tri.triangles().to_vec();
     triangles.sort_unstable();
     Immersion { points, triangles }
 }
 
-/// `ab` (with `(a, b, c)` counter-clockwise and `d` across `ab`) is not
-/// locally Delaunay: `d` strictly inside the circumcircle of `(a, b, c)`.
+/// Diagonal `a–c` of the quad `a, b, c, d` (with `(a, b, c)`
+/// counter-clockwise and `d` across `a–c`) is not locally Delaunay: `d`
+/// strictly inside the circumcircle of `(a, b, c)`.
 fn is_flippable(points: &[Point], a: u32, b: u32, c: u32, d: u32) -> bool {
     let p = |v: u32| points[v as usize];
     in_circle(p(a), p(b), p(c), p(d))

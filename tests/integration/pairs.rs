@@ -94,7 +94,7 @@ fn guaranteed_paths_give_immersions_between_the_pairs() {
                 &MorphOptions::DEFAULT.with_path(path),
             )
             .unwrap_or_else(|e| panic!("{name} {path}: {e}"));
-            assert_eq!(m.path, path, "{name}");
+            assert_eq!(m.paths, [path], "{name}");
             assert!(!m.fallback, "{name} {path}");
             assert_eq!(m.frames.len(), 200);
             for f in &m.frames {

@@ -224,6 +224,8 @@ pub(crate) struct TriangulateArgs {
 pub(crate) enum PathArg {
     /// Rotate-slide angles blended just enough to stay an immersion (guaranteed).
     Hybrid,
+    /// As straight as validity allows: linear where the linear morph is valid (guaranteed).
+    Straight,
     /// Linear interpolation of triangle angles (guaranteed, more distortion).
     Angle,
     /// The paper's rotate-and-slide path (checked; falls back to hybrid).

@@ -21,6 +21,7 @@ impl From<PathArg> for ThirdVertexPath {
     fn from(p: PathArg) -> ThirdVertexPath {
         match p {
             PathArg::Hybrid => ThirdVertexPath::Hybrid,
+            PathArg::Straight => ThirdVertexPath::Straight,
             PathArg::Angle => ThirdVertexPath::Angle,
             PathArg::RotateSlide => ThirdVertexPath::RotateSlide,
             PathArg::Linear => ThirdVertexPath::Linear,
@@ -116,11 +117,10 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         }
         Err(err) => return Err(err.into()),
     };
-    if morph.fallback && !args.quiet {
-        output::note(&format!(
-            "the {} path folded a frame; used the hybrid path instead (every frame is an immersion)",
-            ThirdVertexPath::from(args.path)
-        ));
+    if !args.quiet {
+        for f in &morph.fallbacks {
+            output::note(&format!("{f} (every frame is an immersion)"));
+        }
     }
     if let Some(json) = &args.json {
         let text = serde_json::to_string(&morph)?;
@@ -158,8 +158,12 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
             } else {
                 ""
             },
-            morph.path,
-            if morph.fallback { " (fallback)" } else { "" },
+            morph.path_name(),
+            if morph.fallback {
+                format!(" (fallbacks: {})", morph.fallbacks.len())
+            } else {
+                String::new()
+            },
             m.frames,
             m.valid_frames,
             m.area_rank

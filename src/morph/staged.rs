@@ -1,0 +1,602 @@
+//! Morphing one curve into another whose triangulation differs: staged
+//! edge flips on the way to an intermediate (DESIGN.md §7, §7a). This is
+//! the one staged driver; the intermediate and the flip order are its
+//! parameters.
+//!
+//! A *leg* is a compatible morph from the current shape toward an
+//! intermediate under the current triangulation. The leg is walked in
+//! steps of [`LEG_STEP`]; every step is checked exactly, and at every step
+//! the flips whose gate passes are applied (both new triangles valid and
+//! their smallest angle at least min(the old pair's, a floor)). After a
+//! flip the next leg starts from the current shape under the new
+//! triangulation. Once the triangulation is valid on the other curve, a
+//! last leg goes there.
+//!
+//! - **Target** intermediate (the default): the other curve measured with
+//!   the current triangulation and made valid (see `target.rs`); a flip
+//!   is any diagonal whose flip strictly lowers its crossings with the
+//!   goal triangulation, largest gain first. If the target is reached with
+//!   flips left, the triangles around the blocked flips take the disk's
+//!   angles once (a local unblock); after that the disk finishes the job.
+//! - **Disk** intermediate (Mukherjee & Gopi §6.2): a convex disk with the
+//!   curve's area; flips follow the insertion sequence of
+//!   [`super::flips::flip_sequence`]. At the disk every flip is valid, so
+//!   the procedure always finishes.
+//!
+//! Recovery instead of stopping: a leg whose sampled frame fails the exact
+//! check is walked again with the next guaranteed path; a target shape
+//! that cannot be laid out or that no path reaches hands over to the disk;
+//! every such step is recorded as a [`Fallback`].
+
+use super::flips::{Flip, FlipTriangulation, flip_sequence};
+use super::target::{Candidates, target_shape};
+use super::{Compatible, CompatibleError, MorphError, ThirdVertexPath, area_and_centroid};
+use crate::flip::canonical;
+use crate::frames::Fallback;
+use crate::geom::Point;
+use crate::geom::polygon::{min_triangle_angle as min_angle, signed_area};
+use crate::immersion::{check, check_triangles, is_valid_triangle};
+use crate::tree::{RootChoice, disk_positions};
+
+/// Step of the walk along one leg, in the leg's own parameter.
+pub const LEG_STEP: f64 = 1.0 / 200.0;
+
+/// The staged path's flip schedule step (kept for the public API): the
+/// same as [`LEG_STEP`].
+pub const SCHEDULE_STEP: f64 = LEG_STEP;
+
+/// One stretch of the path: a compatible morph under a fixed
+/// triangulation, used for its local parameter in `[0, s_end]`, with the
+/// samples it was checked at and the cumulative largest vertex move at
+/// each (the frame timing).
+#[derive(Clone, Debug)]
+pub(crate) struct Leg {
+    pub(crate) plan: Compatible,
+    pub(crate) path: ThirdVertexPath,
+    /// Local parameters of the checked samples, from 0 to `s_end`.
+    pub(crate) samples: Vec<f64>,
+    /// Cumulative largest vertex move at each sample (0 at the first).
+    pub(crate) travel: Vec<f64>,
+}
+
+impl Leg {
+    /// The leg's end parameter.
+    pub(crate) fn s_end(&self) -> f64 {
+        self.samples.last().copied().unwrap_or(0.0)
+    }
+
+    /// The leg's total travel.
+    pub(crate) fn length(&self) -> f64 {
+        self.travel.last().copied().unwrap_or(0.0)
+    }
+
+    /// The local parameter at `d` ∈ [0, length] of the leg's travel.
+    pub(crate) fn param_at(&self, d: f64) -> f64 {
+        let (s, c) = (&self.samples, &self.travel);
+        if s.len() < 2 || d <= 0.0 {
+            return 0.0;
+        }
+        let i = c.partition_point(|&x| x < d).clamp(1, s.len() - 1);
+        let (c0, c1) = (c[i - 1], c[i]);
+        let w = if c1 > c0 {
+            ((d - c0) / (c1 - c0)).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        s[i - 1] + w * (s[i] - s[i - 1])
+    }
+}
+
+/// A staged path from one curve to another (in the first curve's labels).
+#[derive(Clone, Debug)]
+pub struct Staged {
+    pub(crate) legs: Vec<Leg>,
+    /// Where the other triangulation was reached: on the disk route the
+    /// fraction of the way to the disk (0 when no flip was needed); on the
+    /// target route the number of legs toward a target.
+    pub u_star: f64,
+    /// Flips applied.
+    pub flips: usize,
+    /// Local unblocks used (target route).
+    pub unblocks: usize,
+    /// True when the disk was used (always for the disk route; a fallback
+    /// for the target route).
+    pub used_disk: bool,
+    /// Everything that did not go as asked, in order.
+    pub fallbacks: Vec<Fallback>,
+    /// Triangles whose third vertex the layout moved by the exact
+    /// orientation test, over every checked sample.
+    pub repairs: usize,
+}
+
+/// The disk of DESIGN.md §7: vertices on a circle spaced in proportion to
+/// the curve's edge lengths (with a floor, so that no two coincide), with
+/// the curve's area (as the polygon it forms) and area centroid.
+pub fn disk_for(points: &[Point], area: f64, centroid: Point) -> Vec<Point> {
+    let unit = disk_positions(points);
+    let a_unit = signed_area(&unit);
+    let c_unit = crate::geom::polygon::area_centroid(&unit);
+    let scale = (area / a_unit).sqrt();
+    unit.into_iter()
+        .map(|p| centroid + (p - c_unit) * scale)
+        .collect()
+}
+
+/// The flip gate of DESIGN.md §7: the flip of the quad `[a, b, c, d]`
+/// (diagonal a–c to b–d) may be applied in shape `p` when both new
+/// triangles are valid and their minimum angle is at least min(the old
+/// pair's, `floor`); returns that minimum angle. With `floor` = 0 only
+/// validity is required.
+pub(crate) fn gate(p: &[Point], quad: [u32; 4], floor: f64) -> Option<f64> {
+    let [a, b, c, d] = quad;
+    let new = [canonical([a, b, d]), canonical([b, c, d])];
+    let old = [canonical([a, b, c]), canonical([c, d, a])];
+    if !new
+        .iter()
+        .all(|t| is_valid_triangle(p, t[0] as usize, t[1] as usize, t[2] as usize))
+    {
+        return None;
+    }
+    let m = min_angle(p, &new);
+    (m >= min_angle(p, &old).min(floor)).then_some(m)
+}
+
+/// Which flips come next.
+enum FlipOrder {
+    /// The insertion sequence of Mukherjee & Gopi §6.2, in order (the disk
+    /// route).
+    Sequence { flips: Vec<Flip>, next: usize },
+    /// Any diagonal whose flip lowers its crossings with the goal, largest
+    /// gain first (the target route).
+    Gain(Candidates),
+}
+
+impl FlipOrder {
+    fn sequence(cur: &FlipTriangulation, goal: &[[u32; 3]]) -> FlipOrder {
+        FlipOrder::Sequence {
+            flips: flip_sequence(cur.vertex_count(), cur.triangles(), goal),
+            next: 0,
+        }
+    }
+
+    fn is_done(&self) -> bool {
+        match self {
+            FlipOrder::Sequence { flips, next } => *next >= flips.len(),
+            FlipOrder::Gain(c) => c.is_empty(),
+        }
+    }
+
+    /// Applies every flip acceptable in shape `p` (all that remain when
+    /// `force`); returns how many.
+    fn batch(
+        &mut self,
+        cur: &mut FlipTriangulation,
+        p: &[Point],
+        floor: f64,
+        force: bool,
+    ) -> usize {
+        match self {
+            FlipOrder::Sequence { flips, next } => {
+                let mut applied = 0;
+                while *next < flips.len() {
+                    let f = flips[*next].from;
+                    let Some((quad, _)) = cur.quad(f.0, f.1) else {
+                        // Out of step with the sequence: recompute it.
+                        break;
+                    };
+                    if !(force || gate(p, quad, floor).is_some()) {
+                        break;
+                    }
+                    cur.flip(f.0, f.1);
+                    *next += 1;
+                    applied += 1;
+                }
+                applied
+            }
+            FlipOrder::Gain(c) => c.batch(cur, p, floor),
+        }
+    }
+
+    /// The quads of the flips waiting to be applied.
+    fn waiting(&self, cur: &FlipTriangulation) -> Vec<[u32; 4]> {
+        match self {
+            FlipOrder::Sequence { flips, next } => flips
+                .get(*next)
+                .and_then(|f| cur.quad(f.from.0, f.from.1))
+                .map(|q| vec![q.0])
+                .unwrap_or_default(),
+            FlipOrder::Gain(c) => c.quads(),
+        }
+    }
+}
+
+/// The inputs of one side of the morph.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SideInput<'a> {
+    /// This side's curve and triangulation.
+    pub(crate) s: &'a [Point],
+    pub(crate) t_start: &'a [[u32; 3]],
+    /// The other curve (in this side's labels) and its triangulation.
+    pub(crate) other: &'a [Point],
+    pub(crate) t_other: &'a [[u32; 3]],
+    /// The path of the legs toward intermediates and of the last leg.
+    pub(crate) leg_path: ThirdVertexPath,
+    pub(crate) final_path: ThirdVertexPath,
+    pub(crate) root: RootChoice,
+    pub(crate) margin: f64,
+    pub(crate) intermediate: super::Intermediate,
+    /// The gate's angle floor on the target route.
+    pub(crate) floor: f64,
+}
+
+/// The guaranteed paths to try after `first`, in order.
+pub(crate) fn recovery_paths(first: ThirdVertexPath) -> Vec<ThirdVertexPath> {
+    let mut v = vec![first];
+    for p in [
+        ThirdVertexPath::Hybrid,
+        ThirdVertexPath::Straight,
+        ThirdVertexPath::Angle,
+    ] {
+        if !v.contains(&p) {
+            v.push(p);
+        }
+    }
+    v
+}
+
+/// What the route is heading for.
+enum Mode {
+    Target,
+    Disk { disk: Vec<Point>, floor: f64 },
+}
+
+/// How a walk along one leg ended.
+enum Walk {
+    /// The leg, and the flips applied at its end.
+    Done(Box<Leg>, usize),
+    /// No guaranteed path could be set up or checked toward this end.
+    Failed(String),
+}
+
+impl Staged {
+    /// Builds the staged path of one side.
+    ///
+    /// # Errors
+    ///
+    /// [`MorphError`] when even the disk route cannot finish (a bug).
+    pub(crate) fn build(inp: &SideInput<'_>) -> Result<Staged, MorphError> {
+        let n = inp.s.len();
+        let goal_tris: &[[u32; 3]] = if check(inp.other, inp.t_start).is_ok() {
+            inp.t_start
+        } else {
+            inp.t_other
+        };
+        let goal = FlipTriangulation::new(n, goal_tris).diagonals();
+        let mut cur = FlipTriangulation::new(n, inp.t_start);
+        let mut st = Staged {
+            legs: Vec::new(),
+            u_star: 0.0,
+            flips: 0,
+            unblocks: 0,
+            used_disk: false,
+            fallbacks: Vec::new(),
+            repairs: 0,
+        };
+        let mut x = inp.s.to_vec();
+        let (area, centroid) = area_and_centroid(inp.s, inp.t_start);
+        let reference_disk = disk_for(inp.s, area, centroid);
+        let mut mode = Mode::Target;
+        let mut order = FlipOrder::Gain(Candidates::new(&cur, &goal));
+        if inp.intermediate == super::Intermediate::Disk {
+            (mode, order) = Self::to_disk(&x, &cur, goal_tris);
+            st.used_disk = true;
+        }
+        let mut remaining = 1.0; // the disk route's distance left to the disk
+        let mut blocked: Vec<bool> = Vec::new();
+        if let Mode::Target = mode {
+            st.flips += order.batch(&mut cur, &x, inp.floor, false);
+        }
+        while !order.is_done() {
+            let (end, floor) = match &mode {
+                Mode::Target => {
+                    match target_shape(cur.triangles(), inp.other, &reference_disk, &blocked) {
+                        Some(t) => (t, inp.floor),
+                        None => {
+                            st.fallbacks.push(Fallback::new(
+                                "finished through the disk",
+                                "the target-shaped intermediate could not be laid out as an immersion",
+                            ));
+                            (mode, order) = Self::to_disk(&x, &cur, goal_tris);
+                            st.used_disk = true;
+                            continue;
+                        }
+                    }
+                }
+                Mode::Disk { disk, floor } => (disk.clone(), *floor),
+            };
+            let at_disk = matches!(mode, Mode::Disk { .. });
+            let walked = walk(inp, &x, &end, &mut cur, &mut order, floor, at_disk, &mut st)?;
+            let (leg, applied) = match walked {
+                Walk::Done(leg, applied) => (*leg, applied),
+                Walk::Failed(why) if !at_disk => {
+                    st.fallbacks
+                        .push(Fallback::new("finished through the disk", &why));
+                    (mode, order) = Self::to_disk(&x, &cur, goal_tris);
+                    st.used_disk = true;
+                    continue;
+                }
+                Walk::Failed(why) => {
+                    return Err(MorphError::InvalidFrame {
+                        t: 0.0,
+                        path: inp.leg_path,
+                        defect: format!("the disk route could not continue: {why}"),
+                    });
+                }
+            };
+            if at_disk {
+                remaining *= 1.0 - leg.s_end();
+            }
+            x = leg.plan.positions(leg.s_end(), leg.path);
+            st.flips += applied;
+            if leg.s_end() > 0.0 {
+                st.legs.push(leg);
+            }
+            if applied > 0 {
+                blocked.clear();
+                continue;
+            }
+            // The intermediate is reached with flips left.
+            if at_disk {
+                // At the disk every flip is valid (convex position).
+                st.flips += order.batch(&mut cur, &x, 0.0, true);
+                continue;
+            }
+            if blocked.is_empty() {
+                st.unblocks += 1;
+                blocked = vec![false; cur.triangles().len()];
+                for q in order.waiting(&cur) {
+                    for t in [[q[0], q[1], q[2]], [q[2], q[3], q[0]]] {
+                        let t = canonical(t);
+                        if let Some(i) = cur.triangles().iter().position(|&c| c == t) {
+                            blocked[i] = true;
+                        }
+                    }
+                }
+            } else {
+                st.fallbacks.push(Fallback::new(
+                    "finished through the disk",
+                    "the target-shaped intermediate was reached with flips left, even after a local unblock",
+                ));
+                (mode, order) = Self::to_disk(&x, &cur, goal_tris);
+                st.used_disk = true;
+            }
+        }
+        st.u_star = if st.used_disk && inp.intermediate == super::Intermediate::Disk {
+            if st.flips == 0 { 0.0 } else { 1.0 - remaining }
+        } else {
+            st.legs.len() as f64
+        };
+        // The last leg, to the other curve.
+        let last = last_leg(inp, &x, cur.triangles(), &mut st)?;
+        st.legs.push(last);
+        Ok(st)
+    }
+
+    /// Switches to the disk route from shape `x`.
+    fn to_disk(x: &[Point], cur: &FlipTriangulation, goal: &[[u32; 3]]) -> (Mode, FlipOrder) {
+        let (area, centroid) = area_and_centroid(x, cur.triangles());
+        let disk = disk_for(x, area, centroid);
+        let floor = 0.5 * min_angle(&disk, cur.triangles()).min(min_angle(&disk, goal));
+        (Mode::Disk { disk, floor }, FlipOrder::sequence(cur, goal))
+    }
+
+    /// Total path length: the sum over the checked samples of the largest
+    /// vertex move.
+    pub fn path_length(&self) -> f64 {
+        self.legs.iter().map(Leg::length).sum()
+    }
+}
+
+/// Walks one leg from `x` toward `end` under `cur`, trying the guaranteed
+/// paths in turn until every sample passes the exact check; applies the
+/// flips at the first sample where some pass the gate (all remaining ones
+/// are left for the caller at the disk).
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the state of the route at the start of a leg"
+)]
+fn walk(
+    inp: &SideInput<'_>,
+    x: &[Point],
+    end: &[Point],
+    cur: &mut FlipTriangulation,
+    order: &mut FlipOrder,
+    floor: f64,
+    at_disk: bool,
+    st: &mut Staged,
+) -> Result<Walk, MorphError> {
+    let mut why = String::new();
+    for (attempt, path) in recovery_paths(inp.leg_path).into_iter().enumerate() {
+        let plan = match Compatible::new(x, end, cur.triangles(), inp.root, inp.margin) {
+            Ok(plan) => plan,
+            Err(e @ CompatibleError::NotCcw { .. }) => {
+                return Ok(Walk::Failed(format!("the intermediate is not valid ({e})")));
+            }
+            Err(e) => return Err(e.into()),
+        };
+        let mut leg = Leg {
+            plan,
+            path,
+            samples: vec![0.0],
+            travel: vec![0.0],
+        };
+        let mut prev = x.to_vec();
+        let mut repairs = 0;
+        let mut k = 1usize;
+        let outcome = loop {
+            let s = (k as f64 * LEG_STEP).min(1.0);
+            let (p, r) = leg.plan.positions_counted(s, path);
+            repairs += r;
+            if let Err(defect) = check_triangles(&p, cur.triangles()) {
+                break Err(format!(
+                    "the {path} path gave an invalid frame at s = {s} ({defect})"
+                ));
+            }
+            leg.samples.push(s);
+            let step = max_move(&prev, &p);
+            leg.travel.push(leg.length() + step);
+            let applied = if s < 1.0 || !at_disk {
+                order.batch(cur, &p, floor, false)
+            } else {
+                0
+            };
+            if applied > 0 || s >= 1.0 {
+                break Ok(applied);
+            }
+            prev = p;
+            k += 1;
+        };
+        match outcome {
+            Ok(applied) => {
+                st.repairs += repairs;
+                if attempt > 0 {
+                    st.fallbacks.push(Fallback::new(
+                        &format!("used the {path} path for a leg"),
+                        &why,
+                    ));
+                }
+                return Ok(Walk::Done(Box::new(leg), applied));
+            }
+            Err(w) => why = w,
+        }
+    }
+    Ok(Walk::Failed(why))
+}
+
+/// The last leg, from `x` to the other curve under `tris` (valid on both),
+/// with the requested path, or the guaranteed ones in turn when a sample
+/// fails the exact check.
+fn last_leg(
+    inp: &SideInput<'_>,
+    x: &[Point],
+    tris: &[[u32; 3]],
+    st: &mut Staged,
+) -> Result<Leg, MorphError> {
+    let plan = Compatible::new(x, inp.other, tris, inp.root, inp.margin)?;
+    let steps = (1.0 / LEG_STEP).round() as usize;
+    let mut why = String::new();
+    for (attempt, path) in recovery_paths(inp.final_path).into_iter().enumerate() {
+        let mut leg = Leg {
+            plan: plan.clone(),
+            path,
+            samples: vec![0.0],
+            travel: vec![0.0],
+        };
+        let mut prev = x.to_vec();
+        let mut repairs = 0;
+        let mut failed = None;
+        for k in 1..=steps {
+            let s = k as f64 / steps as f64;
+            let (p, r) = leg.plan.positions_counted(s, path);
+            repairs += r;
+            if let Err(defect) = check_triangles(&p, tris) {
+                failed = Some(format!(
+                    "the {path} path gave an invalid frame at s = {s} ({defect})"
+                ));
+                break;
+            }
+            leg.samples.push(s);
+            leg.travel.push(leg.length() + max_move(&prev, &p));
+            prev = p;
+        }
+        match failed {
+            None => {
+                st.repairs += repairs;
+                if attempt > 0 {
+                    st.fallbacks.push(Fallback::new(
+                        &format!("used the {path} path for the last leg"),
+                        &why,
+                    ));
+                }
+                return Ok(leg);
+            }
+            Some(w) => why = w,
+        }
+    }
+    Err(MorphError::InvalidFrame {
+        t: 1.0,
+        path: inp.final_path,
+        defect: why,
+    })
+}
+
+/// The largest distance any vertex moves between `a` and `b`.
+pub(crate) fn max_move(a: &[Point], b: &[Point]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(p, q)| (*p - *q).length())
+        .fold(0.0, f64::max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::morph::Intermediate;
+    use crate::morph::compatible::tests::spiral_strip;
+    use crate::quality::{Quality, triangulate_with};
+
+    #[test]
+    fn the_disk_has_the_curve_area_and_centroid() {
+        let (s, tris) = spiral_strip(20, 1.3, 0.2);
+        let (area, c) = crate::morph::area_and_centroid(&s, &tris);
+        let d = disk_for(&s, area, c);
+        assert!((signed_area(&d) - area).abs() < 1e-12 * area);
+        assert!((crate::geom::polygon::area_centroid(&d) - c).length() < 1e-12);
+    }
+
+    fn side(
+        a: &[Point],
+        b: &[Point],
+        ta: &[[u32; 3]],
+        tb: &[[u32; 3]],
+        intermediate: Intermediate,
+    ) -> Staged {
+        Staged::build(&SideInput {
+            s: a,
+            t_start: ta,
+            other: b,
+            t_other: tb,
+            leg_path: ThirdVertexPath::Hybrid,
+            final_path: ThirdVertexPath::Hybrid,
+            root: RootChoice::Disk,
+            margin: 0.05,
+            intermediate,
+            floor: 0.25 * min_angle(a, ta).min(min_angle(b, tb)),
+        })
+        .unwrap()
+    }
+
+    #[test]
+    fn both_routes_between_incompatible_spirals_end_at_the_other_curve() {
+        let (a, _) = spiral_strip(16, 1.4, 0.25);
+        let (b, _) = spiral_strip(16, 0.6, 0.25);
+        // Relabelled by a shift, so that a's triangulation folds on b.
+        let b: Vec<Point> = (0..b.len()).map(|i| b[(i + 5) % b.len()]).collect();
+        let ta = triangulate_with(&a, Quality::Delaunay).unwrap().triangles;
+        assert!(check(&b, &ta).is_err());
+        let tb = triangulate_with(&b, Quality::Delaunay).unwrap().triangles;
+        for route in [Intermediate::Disk, Intermediate::Target] {
+            let st = side(&a, &b, &ta, &tb, route);
+            assert!(st.flips > 0);
+            let last = st.legs.last().unwrap();
+            assert_eq!(last.plan.positions(1.0, last.path), b);
+            assert_eq!(st.legs[0].plan.source(), &a[..]);
+            // Consecutive legs join.
+            for w in st.legs.windows(2) {
+                let end = w[0].plan.positions(w[0].s_end(), w[0].path);
+                assert_eq!(w[1].plan.source(), &end[..]);
+            }
+            assert_eq!(route == Intermediate::Disk, st.used_disk, "{route:?}");
+        }
+    }
+}

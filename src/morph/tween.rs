@@ -1,0 +1,305 @@
+//! A morph planned once, asked for frames at any t (DESIGN.md §12).
+//!
+//! [`Tween::new`] does all the planning of [`super::morph_curves`]: equal
+//! counts, triangulations, correspondence, both staged sides and the
+//! choice between them, every leg walked and checked exactly at its
+//! samples, and the timing table (cumulative largest vertex move over the
+//! samples). [`Tween::frame`] then costs one layout and one exact check,
+//! O(n), and gives the same frame for the same t however it is called.
+
+use super::curves::{CurveMorphError, CurveMorphOptions, MorphReport, Side, plan_sides, prepare};
+use super::staged::{Leg, recovery_paths};
+use super::{MorphError, Staged, ThirdVertexPath};
+use crate::correspond::shift_triangles;
+use crate::frames::{Fallback, Frame, Morph};
+use crate::geom::Point;
+use crate::immersion::check_triangles;
+
+/// A planned morph from one curve to another: a verified frame at any t.
+///
+/// # Examples
+///
+/// ```
+/// use immerse::Curve;
+/// use immerse::morph::{CurveMorphOptions, Tween};
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// let a = Curve::from_path("curves/spiral-strip-400deg-n30.json")?;
+/// let b = Curve::from_path("curves/curl-strip-n10.json")?;
+/// let tween = Tween::new(&a.points, &b.points, &CurveMorphOptions::DEFAULT)?;
+/// let middle = tween.frame(0.5)?;
+/// assert!(middle.is_immersion());
+/// assert_eq!(tween.frame(0.0)?.points.len(), tween.vertex_count());
+/// # Ok(())
+/// # }
+/// ```
+#[derive(Clone, Debug)]
+pub struct Tween {
+    n: usize,
+    /// The side used, in its own curve's labels.
+    staged: Staged,
+    /// True when the target's side is used (frames run backwards on it).
+    reversed: bool,
+    shift: usize,
+    /// Travel at the start of each leg, and in all.
+    offsets: Vec<f64>,
+    total: f64,
+    report: MorphReport,
+}
+
+impl Tween {
+    /// Plans the morph of curve `a` into curve `b` (both oriented, turning
+    /// number +1), as [`super::morph_curves`] does.
+    ///
+    /// # Errors
+    ///
+    /// [`CurveMorphError::NotSelfOverlapping`] when a curve is not
+    /// self-overlapping; [`CurveMorphError::Morph`] (a bug) when no route
+    /// could be completed, after every recovery.
+    pub fn new(
+        a: &[Point],
+        b: &[Point],
+        options: &CurveMorphOptions,
+    ) -> Result<Tween, CurveMorphError> {
+        let prepared = prepare(a, b, options.counts, options.quality)?;
+        let mut fallbacks = prepared.fallbacks.clone();
+        let mut sides = plan_sides(&prepared, options);
+        let n = prepared.a.len();
+        // Recovery: a side that failed gives way to the other; if both
+        // failed, the max–min-angle triangulations are tried.
+        if sides.a.is_err() && sides.b.is_err() && options.quality != crate::Quality::MaxMin {
+            let why = match &sides.a {
+                Err(e) => e.to_string(),
+                Ok(_) => String::new(),
+            };
+            let retry = options.with_quality(crate::Quality::MaxMin);
+            if let Ok(p) = prepare(a, b, retry.counts, retry.quality) {
+                let s = plan_sides(&p, &retry);
+                if s.a.is_ok() || s.b.is_ok() {
+                    fallbacks.push(Fallback::new(
+                        "used the max–min-angle triangulations",
+                        &format!(
+                            "both sides failed with the {} triangulations: {why}",
+                            options.quality.as_str()
+                        ),
+                    ));
+                    return Tween::finish(p.a.len(), s, options, fallbacks);
+                }
+            }
+        }
+        if sides.a.is_err() != sides.b.is_err() {
+            let (failed, err) = match (&sides.a, &sides.b) {
+                (Err(e), _) => (Side::Source, e.to_string()),
+                (_, Err(e)) => (Side::Target, e.to_string()),
+                _ => unreachable!("exactly one side failed"),
+            };
+            fallbacks.push(Fallback::new(
+                &format!("used the other side instead of the {failed} side"),
+                &err,
+            ));
+            sides.use_a = sides.a.is_ok();
+        }
+        Tween::finish(n, sides, options, fallbacks)
+    }
+
+    fn finish(
+        n: usize,
+        sides: super::curves::Sides,
+        options: &CurveMorphOptions,
+        mut fallbacks: Vec<Fallback>,
+    ) -> Result<Tween, CurveMorphError> {
+        let u_star = sides.a.as_ref().map_or(f64::NAN, |s| s.u_star);
+        let v_star = sides.b.as_ref().map_or(f64::NAN, |s| s.u_star);
+        let (staged, used) = if sides.use_a {
+            (sides.a?, Side::Source)
+        } else {
+            (sides.b?, Side::Target)
+        };
+        fallbacks.extend(staged.fallbacks.iter().cloned());
+        let mut paths: Vec<ThirdVertexPath> = Vec::new();
+        for leg in &staged.legs {
+            if !paths.contains(&leg.path) {
+                paths.push(leg.path);
+            }
+        }
+        if paths != [options.morph.path] && !fallbacks.iter().any(|f| f.what.contains("path")) {
+            // The legs toward intermediates use a guaranteed path when an
+            // unguaranteed one was asked for: say so.
+            fallbacks.push(Fallback::new(
+                &format!("used the {} path", crate::frames::path_names(&paths)),
+                &format!(
+                    "the {} path is not guaranteed, so the legs through intermediates use the hybrid path",
+                    options.morph.path
+                ),
+            ));
+        }
+        let mut offsets = Vec::with_capacity(staged.legs.len());
+        let mut total = 0.0;
+        for leg in &staged.legs {
+            offsets.push(total);
+            total += leg.length();
+        }
+        let report = MorphReport {
+            n,
+            shift: sides.k,
+            flips: staged.flips,
+            u_star,
+            v_star,
+            used,
+            unblocks: staged.unblocks,
+            used_disk: staged.used_disk,
+            paths,
+            fallbacks,
+            repairs: staged.repairs,
+        };
+        Ok(Tween {
+            n,
+            staged,
+            reversed: !sides.use_a,
+            shift: sides.k,
+            offsets,
+            total,
+            report,
+        })
+    }
+
+    /// What the planning did: shift, flips, side, paths, fallbacks.
+    pub fn report(&self) -> &MorphReport {
+        &self.report
+    }
+
+    /// Vertices of every frame.
+    pub fn vertex_count(&self) -> usize {
+        self.n
+    }
+
+    /// Total travel: the sum over the checked samples of the largest
+    /// vertex move (the unit of the frame timing).
+    pub fn path_length(&self) -> f64 {
+        self.total
+    }
+
+    /// The leg and its local parameter at fraction `f` of the travel of
+    /// the side used (0 = that side's curve).
+    fn locate(&self, f: f64) -> (&Leg, f64) {
+        let legs = &self.staged.legs;
+        let last = legs.len() - 1;
+        if f >= 1.0 || self.total <= 0.0 && f >= 0.5 {
+            return (&legs[last], legs[last].s_end());
+        }
+        if f <= 0.0 || self.total <= 0.0 {
+            return (&legs[0], 0.0);
+        }
+        let d = f * self.total;
+        // The last leg that starts at or before d.
+        let i = self
+            .offsets
+            .partition_point(|&o| o <= d)
+            .clamp(1, legs.len())
+            - 1;
+        let leg = &legs[i];
+        (leg, leg.param_at(d - self.offsets[i]))
+    }
+
+    /// The frame at fraction `t` ∈ [0, 1] of the total vertex travel
+    /// (0 = the source, exactly; 1 = the target, exactly), checked
+    /// exactly. Vertex `i` is source vertex `i` (after equalising counts);
+    /// at t = 1 it is target vertex `i + shift`.
+    ///
+    /// # Errors
+    ///
+    /// [`MorphError::Fraction`] for a t outside [0, 1] or NaN;
+    /// [`MorphError::InvalidFrame`] (a bug) when no guaranteed path gives
+    /// a valid frame at t.
+    pub fn frame(&self, t: f64) -> Result<Frame, MorphError> {
+        self.frame_with_fallback(t).map(|(f, _)| f)
+    }
+
+    fn frame_with_fallback(&self, t: f64) -> Result<(Frame, Option<Fallback>), MorphError> {
+        if !(0.0..=1.0).contains(&t) {
+            return Err(MorphError::Fraction(t));
+        }
+        let f = if self.reversed { 1.0 - t } else { t };
+        let (leg, s) = self.locate(f);
+        let tris = leg.plan.triangles();
+        let mut first_defect = None;
+        let mut found = None;
+        for path in recovery_paths(leg.path) {
+            let p = leg.plan.positions(s, path);
+            match check_triangles(&p, tris) {
+                Ok(()) => {
+                    found = Some((p, path));
+                    break;
+                }
+                Err(e) => {
+                    first_defect.get_or_insert((path, e));
+                }
+            }
+        }
+        let Some((points, path)) = found else {
+            let (path, e) = first_defect
+                .unwrap_or((leg.path, crate::immersion::ImmersionDefect::TooFewPoints(0)));
+            return Err(MorphError::InvalidFrame {
+                t,
+                path,
+                defect: e.to_string(),
+            });
+        };
+        let fallback = (path != leg.path).then(|| {
+            Fallback::new(
+                &format!("used the {path} path for the frame at t = {t}"),
+                &first_defect.map_or(String::new(), |(p, e)| {
+                    format!("the {p} path gave an invalid frame ({e})")
+                }),
+            )
+        });
+        let frame = if self.reversed {
+            let (n, k) = (self.n, self.shift);
+            Frame {
+                t,
+                points: (0..n).map(|i| points[(i + k) % n]).collect(),
+                triangles: shift_triangles(n, tris, k),
+            }
+        } else {
+            Frame {
+                t,
+                points,
+                triangles: tris.to_vec(),
+            }
+        };
+        Ok((frame, fallback))
+    }
+
+    /// Frames at the given fractions of the travel, each checked exactly,
+    /// with the report's paths and fallbacks.
+    ///
+    /// # Errors
+    ///
+    /// As [`Tween::frame`].
+    pub fn morph(&self, fractions: &[f64]) -> Result<Morph, MorphError> {
+        let mut fallbacks = self.report.fallbacks.clone();
+        let mut paths = self.report.paths.clone();
+        let mut frames = Vec::with_capacity(fractions.len());
+        for &t in fractions {
+            let (frame, fb) = self.frame_with_fallback(t)?;
+            if let Some(fb) = fb {
+                fallbacks.push(fb);
+                if let Some(p) = ThirdVertexPath::ALL.into_iter().find(|p| {
+                    fallbacks
+                        .last()
+                        .is_some_and(|f| f.what.contains(p.as_str()))
+                }) {
+                    if !paths.contains(&p) {
+                        paths.push(p);
+                    }
+                }
+            }
+            frames.push(frame);
+        }
+        Ok(Morph {
+            paths,
+            fallback: !fallbacks.is_empty(),
+            fallbacks,
+            frames,
+        })
+    }
+}

@@ -57,7 +57,7 @@ pub(crate) enum Command {
     /// Morph two compatible planar tilings (triangulations or convex faces).
     ///
     /// Both tilings share their faces; methods other than linear keep every
-    /// face convex and counter-clockwise (Floater–Gotsman, Surazhsky–
+    /// face convex and counter-clockwise (Floater & Gotsman; Surazhsky &
     /// Gotsman). Every frame carries a `valid` flag decided exactly, so a
     /// linear morph that folds is reported frame by frame, not hidden.
     #[command(

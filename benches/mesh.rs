@@ -1,4 +1,4 @@
-//! Mesh morph benchmarks (DESIGN.md §11): the convex-combination morph on
+//! Mesh morph benchmarks (docs/design.md §11): the convex-combination morph on
 //! generated grid pairs ([`grid_pair`]) with a fixed square boundary.
 //!
 //! `convex/1` times set-up plus one frame, `convex/11` set-up plus eleven;

@@ -1,6 +1,7 @@
 //! Prints a markdown table of the incompatible morph on pairs of reference
 //! curves: flips, u*, v*, the minimum angle over the morph against the
-//! inputs', and wall time, for each correspondence rule.
+//! inputs', path length, ballooning and wall time, for each route and
+//! correspondence rule.
 //!
 //! Run with `cargo run --release --example morph_pairs [-- WORD...]`
 //! where words pick correspondence rules (pivot, min-flips, shape,
@@ -33,9 +34,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("curves");
     let fractions: Vec<f64> = (0..=100).map(|i| f64::from(i) / 100.0).collect();
     println!(
-        "| pair | n | route | rule | flips | u* | v* | disk | min angle (°) | inputs' (°) | path length | time (ms) |"
+        "| pair | n | route | rule | flips | u* | v* | disk | min angle (°) | inputs' (°) | path length | ballooning | time (ms) |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let mut summary: Vec<Summary> = Vec::new();
     for &route in &routes {
         for &rule in &rules {

@@ -1,4 +1,4 @@
-//! Measures the morph metrics of DESIGN.md §8 on the compatible pairs of
+//! Measures the morph metrics of docs/design.md §8 on the compatible pairs of
 //! `curves/pairs/` and prints markdown tables:
 //! `cargo run --release --example morph_table`.
 //!

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Prints one markdown report of every benchmark table, each row beside its
-# target from DESIGN.md §11:
+# target from docs/design.md §11:
 #   - the immersion DP (n vs median time, memory)       examples/bench_dp.rs
 #   - frame generation (vertices × frames per second)   examples/bench_frames.rs
 #   - rendering (120 PNG frames at 1024×1024)            render/examples/bench_render.rs

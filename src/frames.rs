@@ -1,4 +1,4 @@
-//! Frames of a morph and the quality metrics of DESIGN.md §8 (seed 004 §7,
+//! Frames of a morph and the quality metrics of docs/design.md §8 (Mukherjee & Gopi §7,
 //! Table 1).
 
 use crate::geom::Point;
@@ -115,7 +115,7 @@ impl std::fmt::Display for Fallback {
     }
 }
 
-/// Quality metrics of a frame sequence (DESIGN.md §8).
+/// Quality metrics of a frame sequence (docs/design.md §8).
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Metrics {
     /// Numerical rank of the triangle-area matrix (rows triangles, columns
@@ -152,7 +152,7 @@ pub struct Metrics {
 }
 
 /// Relative tolerance of the numerical rank: singular values below
-/// 1e-6 × the largest are treated as zero (DESIGN.md §8). Areas carry
+/// 1e-6 × the largest are treated as zero (docs/design.md §8). Areas carry
 /// relative rounding errors near 1e-16 per operation, far below it.
 pub const RANK_TOLERANCE: f64 = 1e-6;
 

@@ -39,7 +39,7 @@
 //!
 //! ## Mesh family
 //!
-//! Compatible planar tilings (DESIGN.md §9) are read and validated by
+//! Compatible planar tilings (docs/design.md §9) are read and validated by
 //! [`tiling`], their interior vertices written as convex combinations by
 //! [`coords`], and morphed by [`mesh_morph::mesh_morph`] with the
 //! guaranteed-injective convex-combination methods of Floater & Gotsman,

@@ -1,11 +1,11 @@
 //! Sparse solves of the mesh morphs' interior systems.
 //!
 //! The mesh morphs solve `x_i − Σ_j λ_ij x_j = Σ_{j ∈ B} λ_ij x_j` for the
-//! interior vertices `i` (seed 001 eq. 5.3), once per frame, for x and y at
-//! once. The matrix is not symmetric, its pattern is fixed by the
+//! interior vertices `i` (Floater & Gotsman eq. 5.3), once per frame, for x and
+//! y at once. The matrix is not symmetric, its pattern is fixed by the
 //! connectivity, its values change smoothly with t, and for the convex
-//! combination morphs it is an M-matrix (unit diagonal, row-stochastic
-//! positive weights, weakly diagonally dominant). So:
+//! combination morphs it is an M-matrix (unit diagonal, row-stochastic positive
+//! weights, weakly diagonally dominant). So:
 //!
 //! * [`SparseSolver::new`] stores the pattern in rows (for the iteration)
 //!   and in columns (for the direct fallback);

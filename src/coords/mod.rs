@@ -4,29 +4,32 @@
 //! `q_1, …, q_d` in counter-clockwise order, `p` lies strictly inside the
 //! kernel of the polygon `(q_1, …, q_d)` (every sector angle is in (0, π)).
 //! Each function here returns `λ_1, …, λ_d > 0` with `Σ λ_j = 1` and
-//! `Σ λ_j q_j = p` (seed 001 eq. 5.4):
+//! `Σ λ_j q_j = p` (Floater & Gotsman eq. 5.4):
 //!
-//! * [`Weights::Floater`]: Floater's averaged weights, seed 001 §5 eq. 5.5.
-//!   For each `k` the line through `q_k` and `p` meets the opposite edge
-//!   `[q_i, q_{i+1})`; the barycentric coordinates of `p` in the triangle
-//!   `(q_k, q_i, q_{i+1})` are averaged over `k`. The edge is found with
-//!   exact orientations ([`orient`]); the coordinates are area ratios in
-//!   floats.
-//! * [`Weights::MeanValue`]: mean value coordinates, seed 002 eq. 2:
-//!   `w_j = (tan(α_{j−1}/2) + tan(α_j/2)) / ℓ_j`, `λ_j = w_j / Σ w`, where
-//!   `α_j` is the angle at `p` between `q_j` and `q_{j+1}` and
-//!   `ℓ_j = |q_j − p|`.
+//! * [`Weights::Floater`]: Floater's averaged weights, Floater & Gotsman §5
+//!   eq. 5.5. For each `k` the line through `q_k` and `p` meets the opposite
+//!   edge `[q_i, q_{i+1})`; the barycentric coordinates of `p` in the triangle
+//!   `(q_k, q_i, q_{i+1})` are averaged over `k`. The edge is found with exact
+//!   orientations ([`orient`]); the coordinates are area ratios in floats.
+//! * [`Weights::MeanValue`]: mean value coordinates, Surazhsky & Gotsman
+//!   *Intrinsic Morphing* eq. 2: `w_j = (tan(α_{j−1}/2) + tan(α_j/2)) / ℓ_j`,
+//!   `λ_j = w_j / Σ w`, where `α_j` is the angle at `p` between `q_j` and
+//!   `q_{j+1}` and `ℓ_j = |q_j − p|`.
 //! * [`Weights::Uniform`]: Tutte's barycentric mapping, `λ_j = 1/d`. These do
 //!   not reproduce `p`; they only give a valid drawing (Tutte 1963).
+//!
+//! Papers: Floater & Gotsman, *How to Morph Tilings Injectively*; Surazhsky &
+//! Gotsman, *Intrinsic Morphing of Compatible Triangulations*
+//! (docs/design.md §9).
 
 use crate::geom::{Orientation, Point, orient};
 
 /// Which barycentric coordinates represent an interior vertex.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub enum Weights {
-    /// Floater's averaged weights (seed 001 eq. 5.5).
+    /// Floater's averaged weights (Floater & Gotsman eq. 5.5).
     Floater,
-    /// Mean value coordinates (seed 002 eq. 2).
+    /// Mean value coordinates (Surazhsky & Gotsman *Intrinsic Morphing* eq. 2).
     #[default]
     MeanValue,
     /// Uniform (Tutte) weights `1/d`; they do not reproduce the vertex.
@@ -72,7 +75,8 @@ pub fn uniform_weights(d: usize) -> Vec<f64> {
 }
 
 /// Sector angles `α_j` (at `p`, from `q_j` to `q_{j+1}`) and edge lengths
-/// `ℓ_j = |q_j − p|` of a star, the ingredients of seed 002 eq. 2.
+/// `ℓ_j = |q_j − p|` of a star, the ingredients of Surazhsky & Gotsman
+/// *Intrinsic Morphing* eq. 2.
 pub fn star_angles(p: Point, ring: &[Point]) -> (Vec<f64>, Vec<f64>) {
     let d = ring.len();
     let rel: Vec<Point> = ring.iter().map(|&q| q - p).collect();
@@ -86,8 +90,9 @@ pub fn star_angles(p: Point, ring: &[Point]) -> (Vec<f64>, Vec<f64>) {
     (angles, lengths)
 }
 
-/// Mean value coordinates from sector angles and edge lengths (seed 002
-/// eq. 2); `angles[j]` lies between neighbours `j` and `j + 1`.
+/// Mean value coordinates from sector angles and edge lengths (Surazhsky &
+/// Gotsman *Intrinsic Morphing* eq. 2); `angles[j]` lies between neighbours `j`
+/// and `j + 1`.
 pub fn mean_value_from_angles(angles: &[f64], lengths: &[f64]) -> Vec<f64> {
     let d = angles.len();
     let tans: Vec<f64> = angles.iter().map(|a| (a * 0.5).tan()).collect();
@@ -98,13 +103,15 @@ pub fn mean_value_from_angles(angles: &[f64], lengths: &[f64]) -> Vec<f64> {
     w.iter().map(|x| x / s).collect()
 }
 
-/// Mean value coordinates of `p` in the star `ring` (seed 002 eq. 2).
+/// Mean value coordinates of `p` in the star `ring` (Surazhsky & Gotsman
+/// *Intrinsic Morphing* eq. 2).
 pub fn mean_value_weights(p: Point, ring: &[Point]) -> Vec<f64> {
     let (angles, lengths) = star_angles(p, ring);
     mean_value_from_angles(&angles, &lengths)
 }
 
-/// Floater's averaged weights of `p` in the star `ring` (seed 001 eq. 5.5).
+/// Floater's averaged weights of `p` in the star `ring` (Floater & Gotsman
+/// eq. 5.5).
 pub fn floater_weights(p: Point, ring: &[Point]) -> Vec<f64> {
     let d = ring.len();
     let mut lambda = vec![0.0; d];

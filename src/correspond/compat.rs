@@ -6,7 +6,7 @@
 //! removing it lowers its two neighbours' counts by one
 //! ([`from_degree_sequence`]). So two triangulations are the same up to a
 //! cyclic relabelling iff their degree sequences agree up to a cyclic
-//! shift. The seed paper compares all shifts in O(n²); here the shift is
+//! shift. Mukherjee & Gopi compare all shifts in O(n²); here the shift is
 //! found in O(n) by Knuth–Morris–Pratt matching of one sequence in the
 //! other, doubled.
 

@@ -1,5 +1,5 @@
-//! Correspondence between two curves: equal vertex counts and the
-//! compatibility of two triangulations (seed 004 §5–6; DESIGN.md §5).
+//! Correspondence between two curves: equal vertex counts and the compatibility
+//! of two triangulations (Mukherjee & Gopi §5–6; docs/design.md §5).
 
 mod compat;
 mod resample;

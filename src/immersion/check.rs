@@ -1,6 +1,6 @@
 //! An independent checker for immersion triangulations.
 //!
-//! Written directly from the definition (DESIGN.md §3) and the exact
+//! Written directly from the definition (docs/design.md §3) and the exact
 //! predicates, sharing no code with the DP: a list of triangles is an
 //! immersion triangulation of the closed polygon `p_0 … p_{n−1}` when there
 //! are exactly n − 2 triangles, each `[a, b, c]` with `a < b < c < n`, every

@@ -1,9 +1,10 @@
 //! The interval DP that decides whether a polygon bounds an immersed disk
 //! and returns a witness triangulation.
 //!
-//! Provenance: the classic O(n³) polygon-triangulation DP over sub-chains,
-//! used for self-overlapping curves by Shor and Van Wyk (seed 004, ref. \[24\]);
-//! the bitset formulation is DESIGN.md §3.
+//! Provenance: the classic O(n³) polygon-triangulation DP over sub-chains, used
+//! for self-overlapping curves by Shor and Van Wyk (*Detecting and Decomposing
+//! Self-Overlapping Curves*, ref. \[24\] of Mukherjee & Gopi); the bitset
+//! formulation is docs/design.md §3.
 //!
 //! `Q[i][j]` (i < j) is true when the sub-polygon `i, i+1, …, j` closed by the
 //! chord `j → i` has a triangulation by valid triangles: `Q[i][i+1]` is true

@@ -1,12 +1,13 @@
 //! Immersion triangulation: decide whether a closed polygon bounds an
 //! immersed disk (is *self-overlapping*) and triangulate that disk.
 //!
-//! Provenance: seed 004 §4 (Baxter et al., "Compatible embedding for 2D
-//! shape animation"), which takes the triangulation from Shor and Van Wyk
-//! (its ref. \[24\]); the exact, bitset form is DESIGN.md §3. A polygon with
-//! turning number +1 is self-overlapping iff the abstract n-gon has a
-//! triangulation by diagonals whose n − 2 triangles are all *valid*
-//! ([`is_valid_triangle`]: strictly counter-clockwise, no vertex fan wraps).
+//! Provenance: Mukherjee & Gopi, *Tweening Boundary Curves of Non-simple
+//! Immersions of a Disk* §4, which takes the triangulation from Shor and Van
+//! Wyk, *Detecting and Decomposing Self-Overlapping Curves* (its ref. \[24\]);
+//! the exact, bitset form is docs/design.md §3. A polygon with turning number
+//! +1 is self-overlapping iff the abstract n-gon has a triangulation by
+//! diagonals whose n − 2 triangles are all *valid* ([`is_valid_triangle`]:
+//! strictly counter-clockwise, no vertex fan wraps).
 //!
 //! [`triangulate`] returns an arbitrary such triangulation (the DP witness;
 //! typically very thin triangles). [`crate::quality`] improves it by

@@ -1,8 +1,9 @@
 //! Validity of one triangle of an immersed disk, exactly, and its bitset form.
 //!
-//! Provenance: DESIGN.md §3, after Shor and Van Wyk (seed 004, ref. \[24\]).
-//! A triangle `(a, b, c)` with `a < b < c` (its corners in cyclic polygon
-//! order) is *valid* when
+//! Provenance: docs/design.md §3, after Shor and Van Wyk (*Detecting and
+//! Decomposing Self-Overlapping Curves*, ref. \[24\] of Mukherjee & Gopi). A
+//! triangle `(a, b, c)` with `a < b < c` (its corners in cyclic polygon order)
+//! is *valid* when
 //!
 //! 1. `orient(p_a, p_b, p_c)` is strictly counter-clockwise, and
 //! 2. no vertex fan wraps: at each corner `v`, with the other two corners

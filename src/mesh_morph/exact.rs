@@ -1,4 +1,5 @@
-//! The exact linear-morph test of a star: seed 003 Appendix A.
+//! The exact linear-morph test of a star: Surazhsky & Gotsman *Controllable
+//! Morphing* Appendix A.
 //!
 //! Appendix A checks that every sector angle `φ_i(t)` of a star stays in
 //! (0, π) while its vertices move linearly, by finding the extrema of

@@ -1,18 +1,20 @@
-//! The local linear-reducible scheme (seed 003 §4.1) with the optional area
-//! improvement (seed 003 §4.3).
+//! The local linear-reducible scheme (Surazhsky & Gotsman *Controllable
+//! Morphing* §4.1) with the optional area improvement (Surazhsky & Gotsman
+//! *Controllable Morphing* §4.3).
 //!
-//! Each interior vertex's star is translated so its centre sits at the
-//! origin and morphed on its own: linearly when the linear morph of the
-//! star is valid (decided exactly, seed 003 Appendix A, see
-//! [`super::check_star_linear`]), otherwise by interpolating the polar
-//! coordinates of its neighbours (seed 003 §4). For the polar morph the
-//! neighbours' angles are unwrapped by accumulating the sector angles, so
-//! each interpolated sector angle lies between its two end values, in
-//! (0, π), and the star stays valid; the common 2π offset is chosen to make
-//! the mean rotation smallest. The centre's barycentric coordinates in the
-//! morphed star form row `i` of `A(t)`. By Theorem 4.1, when the linear
-//! morph of the whole tiling is valid every star is morphed linearly and
-//! the result is the linear morph (with weights that reproduce the vertex).
+//! Each interior vertex's star is translated so its centre sits at the origin
+//! and morphed on its own: linearly when the linear morph of the star is valid
+//! (decided exactly, Surazhsky & Gotsman *Controllable Morphing* Appendix A,
+//! see [`super::check_star_linear`]), otherwise by interpolating the polar
+//! coordinates of its neighbours (Surazhsky & Gotsman *Controllable Morphing*
+//! §4). For the polar morph the neighbours' angles are unwrapped by
+//! accumulating the sector angles, so each interpolated sector angle lies
+//! between its two end values, in (0, π), and the star stays valid; the common
+//! 2π offset is chosen to make the mean rotation smallest. The centre's
+//! barycentric coordinates in the morphed star form row `i` of `A(t)`. By
+//! Theorem 4.1, when the linear morph of the whole tiling is valid every star
+//! is morphed linearly and the result is the linear morph (with weights that
+//! reproduce the vertex).
 
 use super::{MeshFrame, MeshMorphError, MeshMorphOptions, Problem, check_star_linear, lerp};
 use crate::geom::Point;
@@ -66,10 +68,11 @@ fn star_motion(p: &Problem<'_>, v: u32) -> StarMotion {
 }
 
 /// Rescales the radial edges so every sector's area evolves linearly
-/// (seed 003 §4.3): sector `j` between edges `j`, `j + 1` with angle γ gets
-/// lengths `ā_j s`, `ā_{j+1} s` with `½ ā_j ā_{j+1} s² sin γ = S(t)`, where
-/// `ā` are the linearly interpolated lengths and `S(t)` the linearly
-/// interpolated area; each edge takes the mean of its two sectors' values.
+/// (Surazhsky & Gotsman *Controllable Morphing* §4.3): sector `j` between edges
+/// `j`, `j + 1` with angle γ gets lengths `ā_j s`, `ā_{j+1} s` with
+/// `½ ā_j ā_{j+1} s² sin γ = S(t)`, where `ā` are the linearly interpolated
+/// lengths and `S(t)` the linearly interpolated area; each edge takes the mean
+/// of its two sectors' values.
 fn improve_areas(z: &mut [Point], rel0: &[Point], rel1: &[Point], t: f64) {
     let d = z.len();
     let bar: Vec<f64> = (0..d)

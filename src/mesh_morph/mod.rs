@@ -1,56 +1,66 @@
-//! Morphing compatible planar tilings (DESIGN.md §9).
+//! Morphing compatible planar tilings (docs/design.md §9).
 //!
-//! Two [`Tiling`]s with the same faces are morphed by one of five
-//! [`Method`]s. All but `linear` represent every interior vertex `i` as a
-//! convex combination `x_i = Σ_j λ_ij(t) x_j` of its edge neighbours and
-//! solve the sparse system `x_i − Σ_j λ_ij(t) x_j = Σ_{j∈B} λ_ij(t) x_j(t)`
-//! per frame (seed 001 eq. 5.3, through `crate::solve`). Strictly positive
+//! Papers: Floater & Gotsman, *How to Morph Tilings Injectively*; Surazhsky &
+//! Gotsman, *Intrinsic Morphing of Compatible Triangulations* (cited as
+//! *Intrinsic Morphing*) and *Controllable Morphing of Compatible Planar
+//! Triangulations* (cited as *Controllable Morphing*).
+//!
+//! Two [`Tiling`]s with the same faces are morphed by one of five [`Method`]s.
+//! All but `linear` represent every interior vertex `i` as a convex combination
+//! `x_i = Σ_j λ_ij(t) x_j` of its edge neighbours and solve the sparse system
+//! `x_i − Σ_j λ_ij(t) x_j = Σ_{j∈B} λ_ij(t) x_j(t)` per frame
+//! (Floater & Gotsman eq. 5.3, through `crate::solve`). Strictly positive
 //! weights and a convex boundary give a valid tiling (Tutte; Floater), so:
 //!
-//! * [`Method::Linear`]: `x_i(t) = (1 − t) x_i⁰ + t x_i¹` (seed 001 eq. 4.1);
-//!   may degenerate (seed 001 Lemma 4.3).
-//! * [`Method::Convex`]: `λ_ij(t) = (1 − t) λ_ij⁰ + t λ_ij¹` (seed 001 §5).
-//! * [`Method::Intrinsic`]: the sector angles and edge lengths are
-//!   interpolated and put into the mean value formula (seed 002 eq. 6 in
-//!   eq. 2); [`MeshMorphOptions::weights`] is not used.
+//! * [`Method::Linear`]: `x_i(t) = (1 − t) x_i⁰ + t x_i¹` (Floater & Gotsman
+//!   eq. 4.1); may degenerate (Floater & Gotsman Lemma 4.3).
+//! * [`Method::Convex`]: `λ_ij(t) = (1 − t) λ_ij⁰ + t λ_ij¹` (Floater & Gotsman
+//!   §5).
+//! * [`Method::Intrinsic`]: the sector angles and edge lengths are interpolated
+//!   and put into the mean value formula (Surazhsky & Gotsman *Intrinsic
+//!   Morphing* eq. 6 in eq. 2); [`MeshMorphOptions::weights`] is not used.
 //! * [`Method::Power`]: with the stochastic neighbourhood matrix
-//!   `M = [[A, B], [0, I]]` of each tiling, `M(t) = (1 − t) M₀^m + t M₁^m`
-//!   and `x = M(t) x` (seed 003 §3.3). `m = 1` is `convex`; as `m → ∞`
-//!   `M^m` tends to the projection onto the boundary and the morph to the
-//!   linear one. Validity is no longer guaranteed for `m > 1`, so the
-//!   largest valid `m` is searched by doubling then bisection, and a
-//!   fractional refinement `(1 − d)·M(t; m) + d·M(t; m + 1)` with the
-//!   largest valid `d ∈ [0, 1]` by bisection (seed 003 eq. 14, which we
-//!   read as blending powers `m` and `m + 1`). "Valid" is checked exactly on
-//!   the requested times plus [`MeshMorphOptions::validity_samples`] evenly
-//!   spaced ones (deviation: the paper does not say how it samples).
+//!   `M = [[A, B], [0, I]]` of each tiling, `M(t) = (1 − t) M₀^m + t M₁^m` and
+//!   `x = M(t) x` (Surazhsky & Gotsman *Controllable Morphing* §3.3). `m = 1`
+//!   is `convex`; as `m → ∞` `M^m` tends to the projection onto the boundary
+//!   and the morph to the linear one. Validity is no longer guaranteed for
+//!   `m > 1`, so the largest valid `m` is searched by doubling then bisection,
+//!   and a fractional refinement `(1 − d)·M(t; m) + d·M(t; m + 1)` with the
+//!   largest valid `d ∈ [0, 1]` by bisection (Surazhsky & Gotsman *Controllable
+//!   Morphing* eq. 14, which we read as blending powers `m` and `m + 1`).
+//!   "Valid" is checked exactly on the requested times plus
+//!   [`MeshMorphOptions::validity_samples`] evenly spaced ones (deviation: the
+//!   paper does not say how it samples).
 //! * [`Method::Local`]: every star (interior vertex with its neighbours,
-//!   translated so the centre is at the origin) is morphed on its own:
-//!   linearly when the exact test of seed 003 Appendix A says the star's
-//!   linear morph is valid, otherwise by interpolating the polar
-//!   coordinates of its neighbours (seed 003 §4 and §4.1); the weights of
-//!   the centre in the morphed star give row `i` of `A(t)`. With
+//!   translated so the centre is at the origin) is morphed on its own: linearly
+//!   when the exact test of Surazhsky & Gotsman *Controllable Morphing*
+//!   Appendix A says the star's linear morph is valid, otherwise by
+//!   interpolating the polar coordinates of its neighbours (Surazhsky & Gotsman
+//!   *Controllable Morphing* §4 and §4.1); the weights of the centre in the
+//!   morphed star give row `i` of `A(t)`. With
 //!   [`MeshMorphOptions::area_improvement`] every sector's radial edges are
-//!   rescaled so its area evolves linearly, keeping the ratio of the
-//!   linearly interpolated edge lengths, and each edge takes the mean of
-//!   its two sectors' lengths (seed 003 §4.3, eq. 24); angles are kept, so
-//!   validity is too.
+//!   rescaled so its area evolves linearly, keeping the ratio of the linearly
+//!   interpolated edge lengths, and each edge takes the mean of its two
+//!   sectors' lengths (Surazhsky & Gotsman *Controllable Morphing* §4.3,
+//!   eq. 24); angles are kept, so validity is too.
 //! * [`MeshMorphOptions::intermediate`]: a tiling `T_m` to pass through at
-//!   `t_m` (seed 003 §3.4). Each weight (or, for `intrinsic`, each angle and
-//!   length) follows a monotone piecewise cubic Hermite interpolant
-//!   (Fritsch–Butland slopes) through its values at 0, `t_m` and 1, and rows
-//!   are renormalised. Deviation: the paper uses piecewise Bézier curves;
-//!   monotone pieces likewise stay within the range of their end values, so
-//!   weights stay positive and the morph stays valid and C¹.
-//! * Different boundaries (seed 001 §6): each boundary vertex moves by
+//!   `t_m` (Surazhsky & Gotsman *Controllable Morphing* §3.4). Each weight (or,
+//!   for `intrinsic`, each angle and length) follows a monotone piecewise cubic
+//!   Hermite interpolant (Fritsch–Butland slopes) through its values at 0,
+//!   `t_m` and 1, and rows are renormalised. Deviation: the paper uses
+//!   piecewise Bézier curves; monotone pieces likewise stay within the range of
+//!   their end values, so weights stay positive and the morph stays valid and
+//!   C¹.
+//! * Different boundaries (Floater & Gotsman §6): each boundary vertex moves by
 //!   interpolating its polar coordinates about the moving barycentre of the
 //!   boundary vertices; both boundaries must be star-shaped about their
-//!   barycentre (checked exactly). The interior then follows the method.
-//!   The intermediate boundaries need not be convex, so validity is not
-//!   guaranteed there; every [`MeshFrame`] says whether it is valid.
+//!   barycentre (checked exactly). The interior then follows the method. The
+//!   intermediate boundaries need not be convex, so validity is not guaranteed
+//!   there; every [`MeshFrame`] says whether it is valid.
 //!
 //! [`check_linear`] decides exactly whether the linear morph is valid
-//! (seed 003 Theorem 4.1 with the Appendix A test on every star).
+//! (Surazhsky & Gotsman *Controllable Morphing* Theorem 4.1 with the Appendix A
+//! test on every star).
 
 mod exact;
 mod local;
@@ -69,14 +79,16 @@ use crate::tiling::{Tiling, TilingError};
 pub enum Method {
     /// Straight lines at constant speed (`linear`).
     Linear,
-    /// Interpolated convex combination weights (`convex`, seed 001).
+    /// Interpolated convex combination weights (`convex`, Floater & Gotsman).
     Convex,
     /// Interpolated angles and lengths in mean value coordinates
-    /// (`intrinsic`, seed 002).
+    /// (`intrinsic`, Surazhsky & Gotsman *Intrinsic Morphing*).
     Intrinsic,
-    /// Neighbourhood matrices raised to a power (`power`, seed 003 §3.3).
+    /// Neighbourhood matrices raised to a power (`power`, Surazhsky & Gotsman
+    /// *Controllable Morphing* §3.3).
     Power,
-    /// Star by star, linear where valid (`local`, seed 003 §4.1).
+    /// Star by star, linear where valid (`local`, Surazhsky & Gotsman
+    /// *Controllable Morphing* §4.1).
     Local,
 }
 
@@ -144,11 +156,12 @@ pub struct MeshMorphOptions {
     /// Evenly spaced times, besides the requested ones, at which a `power`
     /// candidate must be valid (at most [`MAX_SAMPLES`]). Default: 32.
     pub validity_samples: usize,
-    /// `local` only: improve the evolution of triangle areas (seed 003
-    /// §4.3). Default: `false`.
+    /// `local` only: improve the evolution of triangle areas
+    /// (Surazhsky & Gotsman *Controllable Morphing* §4.3). Default: `false`.
     pub area_improvement: bool,
-    /// A compatible tiling with the same boundary to pass through
-    /// (`convex` and `intrinsic`; seed 003 §3.4). Default: `None`.
+    /// A compatible tiling with the same boundary to pass through (`convex` and
+    /// `intrinsic`; Surazhsky & Gotsman *Controllable Morphing* §3.4). Default:
+    /// `None`.
     pub intermediate: Option<Tiling>,
     /// When to pass through [`MeshMorphOptions::intermediate`], in (0, 1).
     /// Default: 0.5.
@@ -262,7 +275,7 @@ pub enum MeshMorphError {
         reason: String,
     },
     /// The boundaries differ and one is not star-shaped about its barycentre
-    /// (seed 001 §6).
+    /// (Floater & Gotsman §6).
     #[error(
         "the boundaries differ and the {which} boundary is not star-shaped about its barycentre at vertex {vertex}"
     )]
@@ -328,8 +341,9 @@ impl LinearCheck {
 }
 
 /// Decides exactly whether the linear morph from `a` to `b` is valid: the
-/// seed 003 Appendix A test on every star (Theorem 4.1), extended to every
-/// face corner so it also covers polygonal faces and moving boundaries.
+/// Surazhsky & Gotsman *Controllable Morphing* Appendix A test on every star
+/// (Theorem 4.1), extended to every face corner so it also covers polygonal
+/// faces and moving boundaries.
 ///
 /// # Examples
 ///
@@ -376,11 +390,12 @@ pub fn check_linear(a: &Tiling, b: &Tiling) -> LinearCheck {
     LinearCheck::Valid
 }
 
-/// Decides exactly whether the star with centre `c` and counter-clockwise
-/// ring `ring` stays valid (every sector strictly counter-clockwise) while
-/// all its vertices move linearly from time 0 to time 1 (seed 003
-/// Appendix A). Returns the first failing sector index `j` (between ring
-/// vertices `j` and `j + 1`) and an approximate failing interval.
+/// Decides exactly whether the star with centre `c` and counter-clockwise ring
+/// `ring` stays valid (every sector strictly counter-clockwise) while all its
+/// vertices move linearly from time 0 to time 1 (Surazhsky & Gotsman
+/// *Controllable Morphing* Appendix A). Returns the first failing sector index
+/// `j` (between ring vertices `j` and `j + 1`) and an approximate failing
+/// interval.
 ///
 /// # Errors
 ///
@@ -430,7 +445,7 @@ pub(crate) struct Problem<'a> {
     boundary_motion: Option<PolarBoundary>,
 }
 
-/// Polar-coordinate boundary morph of seed 001 §6.
+/// Polar-coordinate boundary morph of Floater & Gotsman §6.
 struct PolarBoundary {
     centre: [Point; 2],
     radius: [Vec<f64>; 2],

@@ -1,4 +1,5 @@
-//! Neighbourhood matrices raised to a power (seed 003 §3.3, eq. 14).
+//! Neighbourhood matrices raised to a power (Surazhsky & Gotsman *Controllable
+//! Morphing* §3.3, eq. 14).
 //!
 //! `M = [[A, B], [0, I]]` is the row-stochastic matrix whose interior rows
 //! hold the barycentric weights and whose boundary rows are the identity,
@@ -116,7 +117,8 @@ impl Csr {
     }
 }
 
-/// The neighbourhood matrix of `tiling` (seed 003 §3).
+/// The neighbourhood matrix of `tiling` (Surazhsky & Gotsman *Controllable
+/// Morphing* §3).
 fn neighbourhood(p: &Problem<'_>, tiling: &Tiling, opts: &MeshMorphOptions) -> Csr {
     let n = tiling.points.len();
     let weights = p.weights_of(tiling, opts.weights);
@@ -353,10 +355,10 @@ fn choose(
     Ok(PowerChoice { m: lo, d: dlo })
 }
 
-/// The power (and fraction) the `power` method would use for these inputs:
-/// the largest `m ≤ max_power` whose morph is valid at `times` and the
-/// validity samples, found by doubling then bisection, refined by a
-/// fraction `d` (seed 003 §3.3), or the fixed
+/// The power (and fraction) the `power` method would use for these inputs: the
+/// largest `m ≤ max_power` whose morph is valid at `times` and the validity
+/// samples, found by doubling then bisection, refined by a fraction `d`
+/// (Surazhsky & Gotsman *Controllable Morphing* §3.3), or the fixed
 /// [`MeshMorphOptions::power`].
 ///
 /// # Errors

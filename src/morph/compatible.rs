@@ -1,5 +1,5 @@
 //! Morphing compatible triangulations by propagation along the dual tree
-//! (seed 004 §5; DESIGN.md §6).
+//! (Mukherjee & Gopi §5; docs/design.md §6).
 //!
 //! The dual tree is rooted at one triangle. The root's placement is
 //! interpolated (rotation angle, stretch from the polar decomposition of
@@ -23,7 +23,7 @@ use crate::tree::{DualTree, RootChoice, Rooted, root_triangle};
 use std::f64::consts::TAU;
 
 /// Default margin ε (radians) kept below 2π in every vertex fan by the
-/// hybrid path (DESIGN.md §6: about 0.05 rad).
+/// hybrid path (docs/design.md §6: about 0.05 rad).
 pub const DEFAULT_FAN_MARGIN: f64 = 0.05;
 
 /// Angle floor (radians) of the straight path: a triangle of the guide
@@ -333,7 +333,7 @@ impl Compatible {
     }
 
     /// The angles of the guide where they are valid, projected into the
-    /// valid set where they are not (DESIGN.md §7b): a triangle that is
+    /// valid set where they are not (docs/design.md §7b): a triangle that is
     /// clockwise or thinner than the floor in the guide is blended toward
     /// the angle rule by an amount that grows continuously from 0 (at the
     /// floor) to 1 (inverted by at least the floor); then vertices whose fan
@@ -524,7 +524,7 @@ pub fn area_and_centroid(points: &[Point], triangles: &[[u32; 3]]) -> (f64, Poin
 /// (1, 0).
 ///
 /// When the angles are positive, each triangle's sum to π and every
-/// vertex's fan sum is below 2π, the result is an immersion (DESIGN.md
+/// vertex's fan sum is below 2π, the result is an immersion (docs/design.md
 /// §6, the `angle` path).
 ///
 /// # Errors

@@ -1,5 +1,5 @@
 //! Morphing two curves end to end: equal vertex counts, triangulation,
-//! correspondence, then the morph (DESIGN.md §5–7).
+//! correspondence, then the morph (docs/design.md §5–7).
 
 use super::flips::crossings_per_shift;
 use super::staged::SideInput;
@@ -163,11 +163,11 @@ pub fn triangulate_side(
 /// The intermediate that staged flips happen on the way to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Intermediate {
-    /// A valid shape that looks like the other curve (DESIGN.md §7a):
+    /// A valid shape that looks like the other curve (docs/design.md §7a):
     /// overlaps extend instead of unwinding.
     #[default]
     Target,
-    /// A convex disk with the curve's area (seed 004 §6.2, DESIGN.md §7).
+    /// A convex disk with the curve's area (Mukherjee & Gopi §6.2, docs/design.md §7).
     Disk,
 }
 
@@ -190,10 +190,10 @@ pub enum Correspondence {
     /// Vertex 0 matches vertex 0.
     Identity,
     /// Try the shift of each rule above and keep the one whose morph is
-    /// shortest (DESIGN.md §7a: score candidates by a trial morph, not by
+    /// shortest (docs/design.md §7a: score candidates by a trial morph, not by
     /// flip count alone); costs one morph per distinct candidate.
     Best,
-    /// The pivot vertices (seed 004 §6.1) of the two triangulations match.
+    /// The pivot vertices (Mukherjee & Gopi §6.1) of the two triangulations match.
     Pivot,
     /// The shift with the fewest crossings between the two triangulations
     /// (fewest flips); ties go to the shapes' best geometric match.
@@ -346,7 +346,7 @@ fn check_fractions(fractions: &[f64]) -> Result<(), CurveMorphError> {
 ///
 /// Both curves are brought to equal counts and triangulated; a cyclic
 /// shift matches their vertices; each curve is then staged toward the
-/// other's triangulation (DESIGN.md §7) and the side that gets there first
+/// other's triangulation (docs/design.md §7) and the side that gets there first
 /// is used, so `morph_curves(a, b)` is `morph_curves(b, a)` reversed. This
 /// is a loop over [`super::Tween::frame`]; build a [`super::Tween`] to ask
 /// for frames one at a time.

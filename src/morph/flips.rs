@@ -1,5 +1,5 @@
 //! Flip sequences between two triangulations of the abstract n-gon
-//! (seed 004 §6.2; DESIGN.md §7). Index-only: no coordinates.
+//! (Mukherjee & Gopi §6.2; docs/design.md §7). Index-only: no coordinates.
 //!
 //! Two diagonals cross when their endpoints interleave around the polygon.
 //! The target's diagonals are sorted by how many of the source's they
@@ -20,7 +20,7 @@ pub fn crossing_count(d1: &[(u32, u32)], d2: &[(u32, u32)]) -> usize {
 }
 
 /// The flips that turn `from` into `to` (both triangulations of the
-/// n-gon), by the insertion order of seed 004 §6.2: `to`'s diagonals by
+/// n-gon), by the insertion order of Mukherjee & Gopi §6.2: `to`'s diagonals by
 /// increasing number of crossings with `from`'s.
 pub fn flip_sequence(n: usize, from: &[[u32; 3]], to: &[[u32; 3]]) -> Vec<Flip> {
     let mut cur = FlipTriangulation::new(n, from);

@@ -1,6 +1,6 @@
 //! Laying out a triangulated n-gon from its triangle angles: the one
 //! layout every angle-based path, the target intermediate and
-//! [`super::lay_out`] use (DESIGN.md §6).
+//! [`super::lay_out`] use (docs/design.md §6).
 //!
 //! With no interior vertices the dual tree is a tree, so any angle vector
 //! lays out: the root edge is placed, then every triangle puts its third
@@ -168,7 +168,7 @@ pub(crate) fn fan_sums(n: usize, corners: &[[usize; 3]], angles: &[[f64; 3]]) ->
     s
 }
 
-/// The closed-form blend of DESIGN.md §6 and §7a: the smallest λ ∈ [0, 1]
+/// The closed-form blend of docs/design.md §6 and §7a: the smallest λ ∈ [0, 1]
 /// such that every vertex fan of (1 − λ)·a + λ·b is at most `cap(v)`,
 /// given the fan sums `sa` of `a` and `sb` of `b` (with `sb[v] < cap(v)`).
 /// Fan sums are linear in λ, so λ is a maximum over vertices.

@@ -1,5 +1,5 @@
 //! Morphing: compatible triangulations by propagation along the dual tree
-//! (DESIGN.md §6).
+//! (docs/design.md §6).
 
 mod compatible;
 mod curves;

@@ -1,4 +1,4 @@
-//! Third-vertex paths of the propagation morph (DESIGN.md §6).
+//! Third-vertex paths of the propagation morph (docs/design.md §6).
 //!
 //! Everything here works in a triangle's *base frame*: the base edge runs
 //! from (0, 0) to (1, 0) and the third vertex sits at (α, β) with β > 0 for
@@ -15,7 +15,7 @@ pub enum ThirdVertexPath {
     /// fold the shape on strong deformations (detected, then `hybrid` is
     /// used instead).
     Linear,
-    /// The seed paper's rotate-and-slide path (seed 004 Fig. 7): keep the
+    /// Mukherjee & Gopi's rotate-and-slide path (their Fig. 7): keep the
     /// length of a propagation edge monotone. Not guaranteed either
     /// (detected, then `hybrid` is used instead).
     RotateSlide,
@@ -103,7 +103,7 @@ pub(crate) fn from_base_frame(x: Point, y: Point, c: Point) -> Point {
 /// should change length monotonically. The linear path already does so
 /// unless the foot of the perpendicular from the pivot to the segment
 /// C1–C2 falls strictly inside it; then part of the path is replaced by an
-/// arc of radius min(l1, l2) about the pivot (seed 004 §5, Fig. 7): hold
+/// arc of radius min(l1, l2) about the pivot (Mukherjee & Gopi §5, Fig. 7): hold
 /// the length on the arc, then slide along a tangent (or slide first, then
 /// hold), so the length stays between l1 and l2 throughout.
 #[derive(Clone, Copy, Debug)]

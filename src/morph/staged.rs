@@ -1,5 +1,5 @@
 //! Morphing one curve into another whose triangulation differs: staged
-//! edge flips on the way to an intermediate (DESIGN.md §7, §7a). This is
+//! edge flips on the way to an intermediate (docs/design.md §7, §7a). This is
 //! the one staged driver; the intermediate and the flip order are its
 //! parameters.
 //!
@@ -109,7 +109,7 @@ pub struct Staged {
     pub repairs: usize,
 }
 
-/// The disk of DESIGN.md §7: vertices on a circle spaced in proportion to
+/// The disk of docs/design.md §7: vertices on a circle spaced in proportion to
 /// the curve's edge lengths (with a floor, so that no two coincide), with
 /// the curve's area (as the polygon it forms) and area centroid.
 pub fn disk_for(points: &[Point], area: f64, centroid: Point) -> Vec<Point> {
@@ -122,7 +122,7 @@ pub fn disk_for(points: &[Point], area: f64, centroid: Point) -> Vec<Point> {
         .collect()
 }
 
-/// The flip gate of DESIGN.md §7: the flip of the quad `[a, b, c, d]`
+/// The flip gate of docs/design.md §7: the flip of the quad `[a, b, c, d]`
 /// (diagonal a–c to b–d) may be applied in shape `p` when both new
 /// triangles are valid and their minimum angle is at least min(the old
 /// pair's, `floor`); returns that minimum angle. With `floor` = 0 only

@@ -1,4 +1,4 @@
-//! A target-shaped intermediate instead of the disk (DESIGN.md §7a): the
+//! A target-shaped intermediate instead of the disk (docs/design.md §7a): the
 //! overlaps of a curve extend toward the other curve instead of unwinding
 //! into a disk and winding up again.
 //!
@@ -24,7 +24,7 @@
 //! total crossing count strictly falls, so this ends. If D* is reached
 //! with flips left, the triangles around the blocked flips take the disk's
 //! angles (a local unblock); if that is not enough either, the disk route
-//! of DESIGN.md §7 finishes the job, so the procedure always ends.
+//! of docs/design.md §7 finishes the job, so the procedure always ends.
 
 use super::flips::{FlipTriangulation, crosses};
 use super::lay_out_rooted;

@@ -1,4 +1,4 @@
-//! A morph planned once, asked for frames at any t (DESIGN.md §12).
+//! A morph planned once, asked for frames at any t (docs/design.md §12).
 //!
 //! [`Tween::new`] does all the planning of [`super::morph_curves`]: equal
 //! counts, triangulations, correspondence, both staged sides and the

@@ -1,4 +1,4 @@
-//! Immersed Delaunay edge flips (seed 004 §4, Algorithm 1).
+//! Immersed Delaunay edge flips (Mukherjee & Gopi §4, Algorithm 1).
 //!
 //! Start from any immersion triangulation, keep a stack of diagonals, pop
 //! one, and flip it when it is not locally Delaunay; then push the four
@@ -20,7 +20,7 @@
 //! [`in_circle`]; co-circular quads are left alone). Then the opposite
 //! angles sum to more than π, the quad `a, d, b, c` is strictly convex, and
 //! the flip leaves every vertex's fan sum and fan order unchanged, so both
-//! new triangles are valid (DESIGN.md §3): that is a debug assertion, not a
+//! new triangles are valid (docs/design.md §3): that is a debug assertion, not a
 //! branch. Each flip raises the sorted angle vector lexicographically, so
 //! the loop terminates; the result is locally Delaunay everywhere (for a
 //! simple polygon: its constrained Delaunay triangulation).
@@ -35,7 +35,7 @@ use crate::geom::Point;
 use crate::geom::predicates::in_circle;
 use crate::immersion::Immersion;
 
-/// Flip an immersion triangulation to an immersed Delaunay one (seed 004
+/// Flip an immersion triangulation to an immersed Delaunay one (Mukherjee & Gopi
 /// Algorithm 1; module docs). The points are unchanged, only the triangles.
 ///
 /// The input should be an immersion triangulation (e.g. from

@@ -4,10 +4,11 @@
 //! Two remedies, both producing triangulations that pass
 //! [`crate::immersion::check`]:
 //!
-//! - [`improve`]: immersed Delaunay edge flips, seed 004 §4 Algorithm 1
-//!   the paper's method.
+//! - [`improve`]: immersed Delaunay edge flips, the method of Mukherjee &
+//!   Gopi, *Tweening Boundary Curves of Non-simple Immersions of a Disk* (§4,
+//!   Algorithm 1).
 //! - [`triangulate_maxmin`]: the interval DP maximising the minimum angle
-//!   exactly over all valid triangulations (DESIGN.md §3), O(n³).
+//!   exactly over all valid triangulations (docs/design.md §3), O(n³).
 //!
 //! [`Quality`] names the choice (`any`, `delaunay`, `maxmin` on the command
 //! line) and [`triangulate_with`] dispatches on it. Guaranteed order of the

@@ -1,9 +1,9 @@
 //! The max–min-angle immersion triangulation, by the same interval DP.
 //!
-//! Provenance: DESIGN.md §3 ("the same DP can also maximise a decomposable
-//! objective"); the DP over sub-chains is Shor and Van Wyk's (seed 004,
-//! ref. \[24\]), the objective is Klincsek-style optimal polygon
-//! triangulation. Validity is decided exactly with the bitsets of
+//! Provenance: docs/design.md §3 (the `maxmin` quality); the DP over sub-chains
+//! is Shor and Van Wyk's (*Detecting and Decomposing Self-Overlapping Curves*,
+//! ref. \[24\] of Mukherjee & Gopi), the objective is Klincsek-style optimal
+//! polygon triangulation. Validity is decided exactly with the bitsets of
 //! [`crate::immersion`]; only the objective is measured in floats.
 //!
 //! For each sub-polygon `(i, j)` the DP keeps the best value of the pair

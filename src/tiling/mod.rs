@@ -1,11 +1,10 @@
 //! Planar tilings: points plus convex faces (triangles the common case).
 //!
 //! A [`Tiling`] is the pair `(U, G)` of Floater & Gotsman, *How to Morph
-//! Tilings Injectively* (seed 001), Definition 2.1: a point sequence and a
-//! list of faces, each a counter-clockwise list of vertex indices, such that
-//! (1) every face is a strictly convex polygon, (2) two faces meet in nothing,
-//! a common vertex or a common edge, and (3) the faces cover the convex hull
-//! of the points.
+//! Tilings Injectively*, Definition 2.1: a point sequence and a list of faces,
+//! each a counter-clockwise list of vertex indices, such that (1) every face is
+//! a strictly convex polygon, (2) two faces meet in nothing, a common vertex or
+//! a common edge, and (3) the faces cover the convex hull of the points.
 //!
 //! Reading ([`read`]) accepts Wavefront OBJ and JSON. Validation
 //! ([`validate`]) decides Definition 2.1 exactly with
@@ -40,7 +39,7 @@ pub const MAX_COORDINATE: f64 = 1.267_650_600_228_229_4e30;
 ///
 /// Built only through [`Tiling::new`], [`Tiling::from_path`],
 /// [`Tiling::from_json_str`] or [`Tiling::from_obj_str`], all of which
-/// validate it against seed 001 Definition 2.1.
+/// validate it against Floater & Gotsman Definition 2.1.
 ///
 /// # Examples
 ///
@@ -64,8 +63,8 @@ pub struct Tiling {
 }
 
 impl Tiling {
-    /// Validates `points` and `faces` (seed 001 Definition 2.1) and builds a
-    /// tiling.
+    /// Validates `points` and `faces` (Floater & Gotsman Definition 2.1) and
+    /// builds a tiling.
     ///
     /// # Errors
     ///
@@ -103,7 +102,7 @@ impl Tiling {
     }
 }
 
-/// Why a tiling could not be read or is not a tiling (seed 001
+/// Why a tiling could not be read or is not a tiling (Floater & Gotsman
 /// Definition 2.1).
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]

@@ -1,4 +1,4 @@
-//! Reading tilings from Wavefront OBJ and JSON (DESIGN.md §10).
+//! Reading tilings from Wavefront OBJ and JSON (docs/design.md §10).
 //!
 //! * JSON: `{"points": [[x,y],...], "faces": [[i,j,k,...], ...]}`, 0-based.
 //! * OBJ: `v x y [z ...]` lines (z ignored) and `f a b c ...` lines with

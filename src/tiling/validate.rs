@@ -1,4 +1,5 @@
-//! Exact validation of seed 001 Definition 2.1, and the tiling's topology.
+//! Exact validation of Floater & Gotsman Definition 2.1, and the tiling's
+//! topology.
 //!
 //! The test is local, and linear in the size of the input:
 //! 1. the faces form a connected combinatorial disk (every directed edge in
@@ -285,7 +286,7 @@ fn check_face(points: &[Point], faces: &[Vec<u32>], f: usize) -> Result<(), Tili
     Ok(())
 }
 
-/// Validates a tiling against seed 001 Definition 2.1 and returns its
+/// Validates a tiling against Floater & Gotsman Definition 2.1 and returns its
 /// topology.
 pub(crate) fn validate_topology(tiling: &Tiling) -> Result<Topology, TilingError> {
     let points = &tiling.points;
@@ -339,7 +340,7 @@ pub(crate) fn validate_topology(tiling: &Tiling) -> Result<Topology, TilingError
     Ok(topo)
 }
 
-/// Validates a tiling against seed 001 Definition 2.1.
+/// Validates a tiling against Floater & Gotsman Definition 2.1.
 ///
 /// # Errors
 ///

@@ -1,10 +1,13 @@
 //! The dual tree of an immersion triangulation, its spine, pivot and root.
 //!
-//! An immersion triangulation has no interior vertices, so its dual graph
-//! (one node per triangle, one edge per shared diagonal) is a tree
-//! (seed 004 §5, §6.1; DESIGN.md §4). This module is index-only: positions
-//! enter only in [`root_triangle`], which needs the curve's edge lengths to
-//! place the disk image.
+//! An immersion triangulation has no interior vertices, so its dual graph (one
+//! node per triangle, one edge per shared diagonal) is a tree (Mukherjee & Gopi
+//! §5, §6.1; docs/design.md §4). This module is index-only: positions enter
+//! only in [`root_triangle`], which needs the curve's edge lengths to place the
+//! disk image.
+//!
+//! The spine, pivot and root follow Mukherjee & Gopi, *Tweening Boundary
+//! Curves of Non-simple Immersions of a Disk*.
 //!
 //! petgraph types stay inside this module; [`DualTree`] wraps them.
 
@@ -47,7 +50,7 @@ pub struct DualTree {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum RootChoice {
     /// The triangle closest to the centre of the disk image of the
-    /// triangulation (seed 004 §5).
+    /// triangulation (Mukherjee & Gopi §5).
     #[default]
     Disk,
     /// The centre of the dual tree (smallest eccentricity in hops).
@@ -248,8 +251,8 @@ impl DualTree {
         }
     }
 
-    /// The spine and pivot (seed 004 §6.1). `points` (the curve) break the
-    /// choice between the two spine ends: the end triangle with the larger
+    /// The spine and pivot (Mukherjee & Gopi §6.1). `points` (the curve) break
+    /// the choice between the two spine ends: the end triangle with the larger
     /// area becomes the pivot triangle.
     pub fn spine(&self, points: &[Point]) -> Spine {
         spine::spine(self, points)

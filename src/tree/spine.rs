@@ -1,4 +1,4 @@
-//! The spine of the dual tree and the pivot vertex (seed 004 §6.1).
+//! The spine of the dual tree and the pivot vertex (Mukherjee & Gopi §6.1).
 //!
 //! Leaves have degree 1, path nodes 2, internal nodes 3. Repeatedly remove
 //! the leaf closest (in hops) to an internal node together with its path

@@ -1,5 +1,5 @@
 //! Mesh family: tilings, barycentric coordinates and mesh morphs, checked
-//! against the worked examples of seeds 001–003.
+//! against the worked examples of Floater & Gotsman and Surazhsky & Gotsman.
 
 use immerse::coords::{Weights, star_weights};
 use immerse::geom::{Point, orient};
@@ -222,7 +222,8 @@ fn power_approaches_linear_when_linear_is_valid() {
     let opts = MeshMorphOptions::DEFAULT.with_max_power(16);
     assert_eq!(power_choice(&a, &b, &ts, &opts).unwrap().m, 16);
     let lin = mesh_morph(&a, &b, Method::Linear, &ts, &opts).unwrap();
-    // Local is linear-reducible (seed 003 Theorem 4.1).
+    // Local is linear-reducible (Surazhsky & Gotsman *Controllable Morphing*
+    // Theorem 4.1).
     let local = mesh_morph(&a, &b, Method::Local, &ts, &opts).unwrap();
     for (l, m) in lin.iter().zip(&local) {
         assert!(rel_diff(&l.points, &m.points) < 1e-9);

@@ -57,7 +57,7 @@ pub(crate) enum Command {
     /// Morph two compatible planar tilings (triangulations or convex faces).
     ///
     /// Both tilings share their faces; methods other than linear keep every
-    /// face convex and counter-clockwise (Floater–Gotsman, Surazhsky–
+    /// face convex and counter-clockwise (Floater & Gotsman; Surazhsky &
     /// Gotsman). Every frame carries a `valid` flag decided exactly, so a
     /// linear morph that folds is reported frame by frame, not hidden.
     #[command(
@@ -113,7 +113,7 @@ pub(crate) struct MeshMorphArgs {
     /// Barycentric weights for convex, power and local.
     #[arg(long, value_enum, default_value_t = WeightsArg::MeanValue)]
     pub(crate) weights: WeightsArg,
-    /// Improve triangle areas in the local method (seed 003 §4.3).
+    /// Improve triangle areas in the local method (Surazhsky & Gotsman, Controllable Morphing §4.3).
     #[arg(long)]
     pub(crate) area_improvement: bool,
     /// Morph through this intermediate tiling (convex and intrinsic).
@@ -263,7 +263,7 @@ pub(crate) enum CountsArg {
 pub(crate) enum IntermediateArg {
     /// A valid shape that looks like the other curve: overlaps extend instead of unwinding.
     Target,
-    /// A convex disk with the curve's area (the seed paper's route).
+    /// A convex disk with the curve's area (Mukherjee & Gopi's route).
     Disk,
 }
 
@@ -272,7 +272,7 @@ pub(crate) enum IntermediateArg {
 pub(crate) enum CorrespondenceArg {
     /// The cyclic shift with the fewest edge flips between the triangulations.
     MinFlips,
-    /// Match the pivot vertices of the two triangulations (seed paper §6.1).
+    /// Match the pivot vertices of the two triangulations (Mukherjee & Gopi §6.1).
     Pivot,
     /// The cyclic shift that best matches the shapes themselves.
     Shape,

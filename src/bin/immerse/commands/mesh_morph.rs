@@ -11,7 +11,7 @@ use immerse::tiling::Tiling;
 use immerse_render as render;
 use serde::Serialize;
 
-/// One frame of `mesh-morph --json` (DESIGN.md §10).
+/// One frame of `mesh-morph --json` (docs/design.md §10).
 #[derive(Serialize)]
 struct FrameJson<'a> {
     /// Time in [0, 1].

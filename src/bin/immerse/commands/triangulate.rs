@@ -11,7 +11,7 @@ use immerse::{Curve, Point, Quality};
 use immerse_render as render;
 use serde::Serialize;
 
-/// The JSON of `immerse triangulate --json` (DESIGN.md §10).
+/// The JSON of `immerse triangulate --json` (docs/design.md §10).
 #[derive(Debug, Serialize)]
 struct TriangulationJson {
     /// Vertices in oriented order (turning number +1), y up.

@@ -1,8 +1,10 @@
 //! Correspondence between two curves: equal vertex counts and the compatibility
 //! of two triangulations (Mukherjee & Gopi §5–6; docs/design.md §5).
 
+mod align;
 mod compat;
 mod resample;
 
+pub use align::align;
 pub use compat::{compatible_shift, degree_sequence, from_degree_sequence, shift_triangles};
 pub use resample::{equalize, insert_vertices, resample_arc_length};

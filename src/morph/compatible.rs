@@ -31,6 +31,11 @@ pub const DEFAULT_FAN_MARGIN: f64 = 0.05;
 /// lifted toward the angle rule (about 0.5°).
 pub const STRAIGHT_MIN_ANGLE: f64 = 0.5 * std::f64::consts::PI / 180.0;
 
+/// The straight path keeps its total area between these multiples of the
+/// smaller and the larger endpoint's: a linear interpolation may shrink a
+/// little in the middle, as animators expect, but never collapse.
+pub const STRAIGHT_AREA_RANGE: (f64, f64) = (0.5, 2.0);
+
 /// Precomputed data for morphing one compatible pair.
 #[derive(Clone, Debug)]
 pub struct Compatible {
@@ -57,10 +62,37 @@ pub struct Compatible {
     fan_margin: f64,
     /// Per triangle, its corners as (base start, base end, third).
     corners: Vec<[usize; 3]>,
-    /// Vertex means of source and target, and the best-fit rotation
-    /// between them (the straight path's guide turns by it).
+    /// Where the straight path's guide ends (the target unless
+    /// [`Compatible::with_guide`] says otherwise), the vertex means of the
+    /// source and of that end, and the best-fit rotation between them (the
+    /// guide turns by it).
+    guide_end: Vec<Point>,
     mean: [Point; 2],
     turn: f64,
+    /// The total area range the straight path keeps to.
+    area_range: (f64, f64),
+}
+
+/// The straight path's total area range for ends of areas `a0` and `a1`.
+fn straight_area_range(a0: f64, a1: f64) -> (f64, f64) {
+    (
+        a0.min(a1) * STRAIGHT_AREA_RANGE.0,
+        a0.max(a1) * STRAIGHT_AREA_RANGE.1,
+    )
+}
+
+/// The vertex means of `a` and `b` and the best-fit rotation from `a` to
+/// `b` about them.
+fn guide_frame(a: &[Point], b: &[Point]) -> ([Point; 2], f64) {
+    let mean = |p: &[Point]| p.iter().copied().sum::<Point>() / p.len() as f64;
+    let (ma, mb) = (mean(a), mean(b));
+    let (mut dot, mut cross) = (0.0, 0.0);
+    for (p, q) in a.iter().zip(b) {
+        let (u, v) = (*p - ma, *q - mb);
+        dot += u.dot(v);
+        cross += u.perp_dot(v);
+    }
+    ([ma, mb], cross.atan2(dot))
 }
 
 /// The interpolated placement of the root triangle: x(t) = L(t)(p − c_s) +
@@ -227,15 +259,7 @@ impl Compatible {
                 [x, y, rooted.third[t] as usize]
             })
             .collect();
-        let mean = |p: &[Point]| p.iter().copied().sum::<Point>() / p.len() as f64;
-        let (mean_s, mean_d) = (mean(src), mean(dst));
-        let (mut dot, mut cross) = (0.0, 0.0);
-        for (p, q) in src.iter().zip(dst) {
-            let (u, v) = (*p - mean_s, *q - mean_d);
-            dot += u.dot(v);
-            cross += u.perp_dot(v);
-        }
-        let turn = cross.atan2(dot);
+        let (mean, turn) = guide_frame(src, dst);
         Ok(Compatible {
             src: src.to_vec(),
             dst: dst.to_vec(),
@@ -253,9 +277,36 @@ impl Compatible {
             edge_turn,
             fan_margin,
             corners,
-            mean: [mean_s, mean_d],
+            guide_end: dst.to_vec(),
+            mean,
             turn,
+            area_range: straight_area_range(a_s, a_d),
         })
+    }
+
+    /// Aims the straight path's guide at `end` instead of the target: the
+    /// frames then follow the straight line from the source toward `end`,
+    /// projected into the valid set of this triangulation with the angle
+    /// rule toward the target (which must be valid), and reach the target
+    /// only where `end`'s own angles are invalid. The staged route uses it
+    /// to head every leg for the other curve while its triangulation still
+    /// differs. Other paths ignore it.
+    ///
+    /// # Panics
+    ///
+    /// When `end` has another length than the curves (a bug in the caller).
+    pub(crate) fn with_guide(mut self, end: &[Point]) -> Compatible {
+        assert_eq!(end.len(), self.src.len(), "a guide end of another length");
+        (self.mean, self.turn) = guide_frame(&self.src, end);
+        self.guide_end = end.to_vec();
+        self
+    }
+
+    /// Makes the straight path keep the area range of a whole morph whose
+    /// ends have total areas `a0` and `a1` (this plan being one leg of it).
+    pub(crate) fn with_area_range(mut self, a0: f64, a1: f64) -> Compatible {
+        self.area_range = straight_area_range(a0, a1);
+        self
     }
 
     /// The shared triangulation.
@@ -309,7 +360,7 @@ impl Compatible {
                 let guide = self.guide(t);
                 let ang = self.straight_angles(t, &guide);
                 layout::lay_out_fitted(&self.rooted, &layout::factors(&ang), |unit| {
-                    layout::fit_similarity(unit, &guide)
+                    self.keep_area(layout::fit_similarity(unit, &guide), unit, &guide)
                 })
             }
         }
@@ -327,7 +378,7 @@ impl Compatible {
         let back = Point::from_angle(-self.turn);
         self.src
             .iter()
-            .zip(&self.dst)
+            .zip(&self.guide_end)
             .map(|(&p, &q)| c + spin.rotate((p - c0) * (1.0 - t) + back.rotate(q - c1) * t))
             .collect()
     }
@@ -404,6 +455,36 @@ impl Compatible {
             }
         }
         ang
+    }
+
+    /// The straight path never collapses or balloons the shape: where the
+    /// fitted layout's total area leaves the endpoints' range widened by
+    /// [`STRAIGHT_AREA_RANGE`], it is scaled about the guide's vertex mean
+    /// back to the nearest end of that range (a no-op where the linear
+    /// morph stays in range, so linear stays linear there).
+    fn keep_area(
+        &self,
+        fit: layout::Similarity,
+        unit: &[Point],
+        guide: &[Point],
+    ) -> layout::Similarity {
+        let (area_unit, _) = area_and_centroid(unit, &self.triangles);
+        let area = area_unit * fit.a.length_squared();
+        let (lo, hi) = self.area_range;
+        if area.is_nan() || area <= 0.0 || (lo..=hi).contains(&area) {
+            return fit;
+        }
+        let k = (area.clamp(lo, hi) / area).sqrt();
+        let n = guide.len() as f64;
+        let (cu, cg) = (
+            unit.iter().copied().sum::<Point>() / n,
+            guide.iter().copied().sum::<Point>() / n,
+        );
+        let a = fit.a * k;
+        layout::Similarity {
+            a,
+            b: cg - a.rotate(cu),
+        }
     }
 
     /// Lays out an angle vector with the normalisation of the angle-based

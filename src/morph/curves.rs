@@ -38,9 +38,10 @@ pub struct CurveMorphOptions {
     /// The intermediate of incompatible morphs. Default:
     /// [`Intermediate::Target`].
     pub intermediate: Intermediate,
-    /// How vertices are matched. Default: [`Correspondence::MinFlips`]
-    /// (measured best with the target route on the reference pairs; see
-    /// docs/incompatible-morph.md).
+    /// How vertices are matched. Default: [`Correspondence::Best`] (the
+    /// outline and min-flips rules tried, the one whose vertices travel
+    /// less kept; measured on `curves/motion-pairs.list`, see
+    /// docs/motion.md).
     pub correspondence: Correspondence,
 }
 
@@ -50,7 +51,7 @@ impl CurveMorphOptions {
         quality: Quality::Delaunay,
         morph: MorphOptions::DEFAULT,
         counts: Counts::Insert,
-        correspondence: Correspondence::MinFlips,
+        correspondence: Correspondence::Best,
         intermediate: Intermediate::Target,
     };
 
@@ -189,25 +190,31 @@ impl Intermediate {
 pub enum Correspondence {
     /// Vertex 0 matches vertex 0.
     Identity,
-    /// Try the shift of each rule above and keep the one whose morph is
-    /// shortest (docs/design.md §7a: score candidates by a trial morph, not by
-    /// flip count alone); costs one morph per distinct candidate.
+    /// Plan the morph with the outline rule and with the min-flips rule
+    /// and keep the one whose vertices travel less (docs/design.md §7b:
+    /// choose by what the user sees, with a trial morph); costs two plans.
+    #[default]
     Best,
     /// The pivot vertices (Mukherjee & Gopi §6.1) of the two triangulations match.
     Pivot,
     /// The shift with the fewest crossings between the two triangulations
     /// (fewest flips); ties go to the shapes' best geometric match.
-    #[default]
     MinFlips,
     /// The shift that best matches the shapes themselves: least sum of
     /// squared distances between matched vertices after normalising
     /// position and size.
     Shape,
+    /// Match the outlines by arc length, up to a rotation, scale and
+    /// translation: the shift that maps one outline best onto the other,
+    /// with the inserted vertices placed where the other curve's vertices
+    /// are (original vertices stay exact). What the user sees corresponds.
+    Outline,
 }
 
 impl Correspondence {
     /// All rules, in CLI order.
-    pub const ALL: [Correspondence; 5] = [
+    pub const ALL: [Correspondence; 6] = [
+        Correspondence::Outline,
         Correspondence::MinFlips,
         Correspondence::Pivot,
         Correspondence::Shape,
@@ -222,6 +229,7 @@ impl Correspondence {
             Correspondence::Pivot => "pivot",
             Correspondence::MinFlips => "min-flips",
             Correspondence::Shape => "shape",
+            Correspondence::Outline => "outline",
             Correspondence::Best => "best",
         }
     }
@@ -270,6 +278,7 @@ pub fn choose_shift(
             };
             (spine(b, tb) + n - spine(a, ta)) % n
         }
+        Correspondence::Outline => crate::correspond::align(a, b).2,
         Correspondence::Shape => {
             let geo = shape_cost_per_shift(a, b);
             (0..n)
@@ -384,6 +393,8 @@ pub(crate) struct Prepared {
     pub(crate) b: Vec<Point>,
     pub(crate) ta: Vec<[u32; 3]>,
     pub(crate) tb: Vec<[u32; 3]>,
+    /// The shift, when preparing the curves chose it (outline rule).
+    pub(crate) shift: Option<usize>,
     pub(crate) fallbacks: Vec<Fallback>,
 }
 
@@ -394,8 +405,22 @@ pub(crate) fn prepare(
     b: &[Point],
     counts: Counts,
     quality: Quality,
+    correspondence: Correspondence,
 ) -> Result<Prepared, CurveMorphError> {
     let mut fallbacks = Vec::new();
+    if counts == Counts::Insert && correspondence == Correspondence::Outline {
+        let (a, b, k) = crate::correspond::align(a, b);
+        let ta = triangulate_side(&a, quality, Side::Source)?.triangles;
+        let tb = triangulate_side(&b, quality, Side::Target)?.triangles;
+        return Ok(Prepared {
+            a,
+            b,
+            ta,
+            tb,
+            shift: Some(k),
+            fallbacks,
+        });
+    }
     if counts == Counts::Resample {
         let (ra, rb) = equal_counts(a, b, Counts::Resample);
         let tried = [(&ra, Side::Source), (&rb, Side::Target)]
@@ -407,6 +432,7 @@ pub(crate) fn prepare(
                     b: rb,
                     ta: ta.triangles,
                     tb: tb.triangles,
+                    shift: None,
                     fallbacks,
                 });
             }
@@ -432,6 +458,7 @@ pub(crate) fn prepare(
         b,
         ta,
         tb,
+        shift: None,
         fallbacks,
     })
 }
@@ -495,37 +522,39 @@ pub(crate) fn sides(p: &Prepared, k: usize, options: &CurveMorphOptions) -> Side
     }
 }
 
-/// The shift and sides the options ask for: one rule's shift, or for
-/// [`Correspondence::Best`] the shortest morph over every rule's shift.
-pub(crate) fn plan_sides(p: &Prepared, options: &CurveMorphOptions) -> Sides {
+/// The curves prepared and both sides planned as the options ask: one
+/// rule's shift, or for [`Correspondence::Best`] the trial morphs of the
+/// outline and min-flips rules, keeping the one whose vertices travel
+/// less (the detour of docs/design.md §7b, whose denominator both share).
+pub(crate) fn plan(
+    a: &[Point],
+    b: &[Point],
+    options: &CurveMorphOptions,
+) -> Result<(Prepared, Sides), CurveMorphError> {
+    let one = |rule: Correspondence| -> Result<(Prepared, Sides), CurveMorphError> {
+        let p = prepare(a, b, options.counts, options.quality, rule)?;
+        let k = match p.shift {
+            Some(k) => k,
+            None => choose_shift(&p.a, &p.b, &p.ta, &p.tb, rule),
+        };
+        let s = sides(&p, k, options);
+        Ok((p, s))
+    };
     if options.correspondence != Correspondence::Best {
-        let k = choose_shift(&p.a, &p.b, &p.ta, &p.tb, options.correspondence);
-        return sides(p, k, options);
+        return one(options.correspondence);
     }
-    // Try the shift of every other rule; keep the shortest morph (ties to
-    // the earlier rule, whose order is the same in both directions).
-    let mut best: Option<(f64, Sides)> = None;
-    let mut tried: Vec<usize> = Vec::new();
-    for rule in [
-        Correspondence::MinFlips,
-        Correspondence::Pivot,
-        Correspondence::Shape,
-        Correspondence::Identity,
-    ] {
-        let k = choose_shift(&p.a, &p.b, &p.ta, &p.tb, rule);
-        if tried.contains(&k) {
-            continue;
-        }
-        tried.push(k);
-        let s = sides(p, k, options);
+    let mut best: Option<(f64, (Prepared, Sides))> = None;
+    for rule in [Correspondence::Outline, Correspondence::MinFlips] {
+        let candidate = one(rule)?;
+        let s = &candidate.1;
         let chosen = if s.use_a { &s.a } else { &s.b };
-        let length = chosen.as_ref().map_or(f64::INFINITY, Staged::path_length);
-        if best.as_ref().is_none_or(|(l, _)| length < *l) {
-            best = Some((length, s));
+        let travel = chosen.as_ref().map_or(f64::INFINITY, Staged::mean_travel);
+        if best.as_ref().is_none_or(|(t, _)| travel < *t) {
+            best = Some((travel, candidate));
         }
     }
     match best {
-        Some((_, s)) => s,
-        None => sides(p, 0, options),
+        Some((_, c)) => Ok(c),
+        None => one(Correspondence::MinFlips),
     }
 }

@@ -11,8 +11,8 @@ mod target;
 mod tween;
 
 pub use compatible::{
-    Compatible, CompatibleError, DEFAULT_FAN_MARGIN, STRAIGHT_MIN_ANGLE, area_and_centroid,
-    lay_out, lay_out_rooted,
+    Compatible, CompatibleError, DEFAULT_FAN_MARGIN, STRAIGHT_AREA_RANGE, STRAIGHT_MIN_ANGLE,
+    area_and_centroid, lay_out, lay_out_rooted,
 };
 pub use curves::{
     Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, MorphReport, Side,
@@ -30,7 +30,7 @@ use crate::tree::RootChoice;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct MorphOptions {
-    /// The third-vertex path. Default: [`ThirdVertexPath::Hybrid`].
+    /// The third-vertex path. Default: [`ThirdVertexPath::Straight`].
     pub path: ThirdVertexPath,
     /// The root of the propagation. Default: [`RootChoice::Disk`].
     pub root: RootChoice,
@@ -42,7 +42,7 @@ pub struct MorphOptions {
 impl MorphOptions {
     /// The defaults.
     pub const DEFAULT: MorphOptions = MorphOptions {
-        path: ThirdVertexPath::Hybrid,
+        path: ThirdVertexPath::Straight,
         root: RootChoice::Disk,
         fan_margin: DEFAULT_FAN_MARGIN,
     };

@@ -25,13 +25,13 @@ pub enum ThirdVertexPath {
     /// Rotate-slide angles blended toward the angle rule just enough to
     /// keep every vertex fan below 2π: an immersion for every t with little
     /// distortion.
-    #[default]
     Hybrid,
     /// As straight as validity allows: the end shapes interpolated
     /// linearly (in a frame turning by their best-fit rotation), projected
     /// into the valid angle set only where that interpolation is invalid.
     /// An immersion for every t; where the linear morph is valid, it is the
     /// linear morph.
+    #[default]
     Straight,
 }
 

@@ -57,6 +57,9 @@ pub(crate) struct Leg {
     pub(crate) samples: Vec<f64>,
     /// Cumulative largest vertex move at each sample (0 at the first).
     pub(crate) travel: Vec<f64>,
+    /// The mean over vertices of the distance each travels over the
+    /// samples (the numerator of the detour).
+    pub(crate) mean_travel: f64,
 }
 
 impl Leg {
@@ -229,6 +232,21 @@ pub(crate) struct SideInput<'a> {
     pub(crate) floor: f64,
 }
 
+impl SideInput<'_> {
+    /// A leg's plan from `x` to `end` under `tris`, keeping the whole
+    /// morph's area range (straight path).
+    fn plan(
+        &self,
+        x: &[Point],
+        end: &[Point],
+        tris: &[[u32; 3]],
+    ) -> Result<Compatible, CompatibleError> {
+        let a0 = area_and_centroid(self.s, self.t_start).0;
+        let a1 = area_and_centroid(self.other, self.t_other).0;
+        Ok(Compatible::new(x, end, tris, self.root, self.margin)?.with_area_range(a0, a1))
+    }
+}
+
 /// The guaranteed paths to try after `first`, in order.
 pub(crate) fn recovery_paths(first: ThirdVertexPath) -> Vec<ThirdVertexPath> {
     let mut v = vec![first];
@@ -395,6 +413,12 @@ impl Staged {
     pub fn path_length(&self) -> f64 {
         self.legs.iter().map(Leg::length).sum()
     }
+
+    /// The mean over vertices of the distance each travels along the whole
+    /// path (over the checked samples).
+    pub fn mean_travel(&self) -> f64 {
+        self.legs.iter().map(|l| l.mean_travel).sum()
+    }
 }
 
 /// Walks one leg from `x` toward `end` under `cur`, trying the guaranteed
@@ -417,7 +441,10 @@ fn walk(
 ) -> Result<Walk, MorphError> {
     let mut why = String::new();
     for (attempt, path) in recovery_paths(inp.leg_path).into_iter().enumerate() {
-        let plan = match Compatible::new(x, end, cur.triangles(), inp.root, inp.margin) {
+        let plan = match inp.plan(x, end, cur.triangles()) {
+            // Toward a target-shaped intermediate, head for the other curve
+            // itself (its projection is the intermediate where they differ).
+            Ok(plan) if !at_disk => plan.with_guide(inp.other),
             Ok(plan) => plan,
             Err(e @ CompatibleError::NotCcw { .. }) => {
                 return Ok(Walk::Failed(format!("the intermediate is not valid ({e})")));
@@ -429,6 +456,7 @@ fn walk(
             path,
             samples: vec![0.0],
             travel: vec![0.0],
+            mean_travel: 0.0,
         };
         let mut prev = x.to_vec();
         let mut repairs = 0;
@@ -443,8 +471,9 @@ fn walk(
                 ));
             }
             leg.samples.push(s);
-            let step = max_move(&prev, &p);
+            let (step, mean) = moves(&prev, &p);
             leg.travel.push(leg.length() + step);
+            leg.mean_travel += mean;
             let applied = if s < 1.0 || !at_disk {
                 order.batch(cur, &p, floor, false)
             } else {
@@ -482,60 +511,96 @@ fn last_leg(
     tris: &[[u32; 3]],
     st: &mut Staged,
 ) -> Result<Leg, MorphError> {
-    let plan = Compatible::new(x, inp.other, tris, inp.root, inp.margin)?;
-    let steps = (1.0 / LEG_STEP).round() as usize;
+    let plan = inp.plan(x, inp.other, tris)?;
     let mut why = String::new();
-    for (attempt, path) in recovery_paths(inp.final_path).into_iter().enumerate() {
-        let mut leg = Leg {
-            plan: plan.clone(),
-            path,
-            samples: vec![0.0],
-            travel: vec![0.0],
-        };
-        let mut prev = x.to_vec();
-        let mut repairs = 0;
-        let mut failed = None;
-        for k in 1..=steps {
-            let s = k as f64 / steps as f64;
-            let (p, r) = leg.plan.positions_counted(s, path);
-            repairs += r;
-            if let Err(defect) = check_triangles(&p, tris) {
-                failed = Some(format!(
-                    "the {path} path gave an invalid frame at s = {s} ({defect})"
-                ));
-                break;
-            }
-            leg.samples.push(s);
-            leg.travel.push(leg.length() + max_move(&prev, &p));
-            prev = p;
-        }
-        match failed {
-            None => {
-                st.repairs += repairs;
-                if attempt > 0 {
+    // The straight path competes with the hybrid one on the last leg: a
+    // winding or unwinding that straight lines cut across is often
+    // shorter along the hybrid path. The one whose vertices travel less
+    // is kept.
+    let mut candidates = recovery_paths(inp.final_path);
+    let compete = inp.final_path == ThirdVertexPath::Straight;
+    let mut best: Option<(Leg, usize)> = None;
+    for (attempt, path) in candidates.drain(..).enumerate() {
+        match sample_leg(plan.clone(), path, x, tris) {
+            Ok((leg, repairs)) => {
+                if attempt > 0 && best.is_none() {
                     st.fallbacks.push(Fallback::new(
                         &format!("used the {path} path for the last leg"),
                         &why,
                     ));
                 }
-                return Ok(leg);
+                let better = best
+                    .as_ref()
+                    .is_none_or(|(b, _)| leg.mean_travel < b.mean_travel);
+                if better {
+                    best = Some((leg, repairs));
+                }
+                let tried_rival = !compete || path == ThirdVertexPath::Hybrid;
+                if tried_rival {
+                    break;
+                }
             }
-            Some(w) => why = w,
+            Err(w) => why = w,
         }
     }
-    Err(MorphError::InvalidFrame {
-        t: 1.0,
-        path: inp.final_path,
-        defect: why,
-    })
+    match best {
+        Some((leg, repairs)) => {
+            st.repairs += repairs;
+            Ok(leg)
+        }
+        None => Err(MorphError::InvalidFrame {
+            t: 1.0,
+            path: inp.final_path,
+            defect: why,
+        }),
+    }
 }
 
-/// The largest distance any vertex moves between `a` and `b`.
-pub(crate) fn max_move(a: &[Point], b: &[Point]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(p, q)| (*p - *q).length())
-        .fold(0.0, f64::max)
+/// Samples the whole of a leg with `path`, checking every sample exactly.
+fn sample_leg(
+    plan: Compatible,
+    path: ThirdVertexPath,
+    x: &[Point],
+    tris: &[[u32; 3]],
+) -> Result<(Leg, usize), String> {
+    let steps = (1.0 / LEG_STEP).round() as usize;
+    let mut leg = Leg {
+        plan,
+        path,
+        samples: vec![0.0],
+        travel: vec![0.0],
+        mean_travel: 0.0,
+    };
+    let mut prev = x.to_vec();
+    let mut repairs = 0;
+    for k in 1..=steps {
+        let s = k as f64 / steps as f64;
+        let (p, r) = leg.plan.positions_counted(s, path);
+        repairs += r;
+        if let Err(defect) = check_triangles(&p, tris) {
+            return Err(format!(
+                "the {path} path gave an invalid frame at s = {s} ({defect})"
+            ));
+        }
+        leg.samples.push(s);
+        let (step, mean) = moves(&prev, &p);
+        leg.travel.push(leg.length() + step);
+        leg.mean_travel += mean;
+        prev = p;
+    }
+    Ok((leg, repairs))
+}
+
+/// The largest and the mean distance the vertices move between `a` and
+/// `b`.
+pub(crate) fn moves(a: &[Point], b: &[Point]) -> (f64, f64) {
+    let (mut max, mut sum) = (0.0f64, 0.0);
+    for (p, q) in a.iter().zip(b) {
+        let d = (*p - *q).length();
+        max = max.max(d);
+        sum += d;
+    }
+    (max, sum / a.len().max(1) as f64)
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@
 //! samples). [`Tween::frame`] then costs one layout and one exact check,
 //! O(n), and gives the same frame for the same t however it is called.
 
-use super::curves::{CurveMorphError, CurveMorphOptions, MorphReport, Side, plan_sides, prepare};
+use super::curves::{CurveMorphError, CurveMorphOptions, MorphReport, Side, plan};
 use super::staged::{Leg, recovery_paths};
 use super::{MorphError, Staged, ThirdVertexPath};
 use crate::correspond::shift_triangles;
@@ -60,9 +60,8 @@ impl Tween {
         b: &[Point],
         options: &CurveMorphOptions,
     ) -> Result<Tween, CurveMorphError> {
-        let prepared = prepare(a, b, options.counts, options.quality)?;
+        let (prepared, mut sides) = plan(a, b, options)?;
         let mut fallbacks = prepared.fallbacks.clone();
-        let mut sides = plan_sides(&prepared, options);
         let n = prepared.a.len();
         // Recovery: a side that failed gives way to the other; if both
         // failed, the max–min-angle triangulations are tried.
@@ -72,8 +71,7 @@ impl Tween {
                 Ok(_) => String::new(),
             };
             let retry = options.with_quality(crate::Quality::MaxMin);
-            if let Ok(p) = prepare(a, b, retry.counts, retry.quality) {
-                let s = plan_sides(&p, &retry);
+            if let Ok((p, s)) = plan(a, b, &retry) {
                 if s.a.is_ok() || s.b.is_ok() {
                     fallbacks.push(Fallback::new(
                         "used the max–min-angle triangulations",
@@ -82,6 +80,7 @@ impl Tween {
                             options.quality.as_str()
                         ),
                     ));
+                    fallbacks.extend(p.fallbacks.iter().cloned());
                     return Tween::finish(p.a.len(), s, options, fallbacks);
                 }
             }
@@ -121,8 +120,8 @@ impl Tween {
                 paths.push(leg.path);
             }
         }
-        if paths != [options.morph.path] && !fallbacks.iter().any(|f| f.what.contains("path")) {
-            // The legs toward intermediates use a guaranteed path when an
+        if !options.morph.path.is_guaranteed() && paths.len() > 1 {
+            // Legs toward intermediates use a guaranteed path when an
             // unguaranteed one was asked for: say so.
             fallbacks.push(Fallback::new(
                 &format!("used the {} path", crate::frames::path_names(&paths)),

@@ -1,11 +1,27 @@
-//! The reference pairs of `curves/reference-pairs.list`, shared by the
-//! morph tests and the examples (`#[path]`-included).
+//! The pair lists of `curves/` (`reference-pairs.list`,
+//! `motion-pairs.list`), shared by the morph tests and the examples
+//! (`#[path]`-included).
 
 /// The pairs of `curves/reference-pairs.list` ("source target" per line,
 /// `#` comments).
+#[allow(dead_code, reason = "not every includer reads both lists")]
 pub(crate) fn reference_pairs() -> Vec<(String, String)> {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("curves/reference-pairs.list");
-    let text = std::fs::read_to_string(&path).expect("curves/reference-pairs.list is readable");
+    pair_list("reference-pairs.list")
+}
+
+/// The pairs of `curves/motion-pairs.list`: self-overlapping pairs for
+/// measuring motion (detour, unwind).
+#[allow(dead_code, reason = "not every includer reads both lists")]
+pub(crate) fn motion_pairs() -> Vec<(String, String)> {
+    pair_list("motion-pairs.list")
+}
+
+fn pair_list(name: &str) -> Vec<(String, String)> {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("curves")
+        .join(name);
+    let text = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("{} is not readable: {e}", path.display()));
     text.lines()
         .map(|l| l.split('#').next().unwrap_or("").trim())
         .filter(|l| !l.is_empty())

@@ -270,6 +270,8 @@ pub(crate) enum IntermediateArg {
 /// How the vertices of the two curves are matched.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum CorrespondenceArg {
+    /// Match the outlines by arc length up to a rotation and scale; inserted vertices go where the other curve's are.
+    Outline,
     /// The cyclic shift with the fewest edge flips between the triangulations.
     MinFlips,
     /// Match the pivot vertices of the two triangulations (Mukherjee & Gopi §6.1).
@@ -278,7 +280,7 @@ pub(crate) enum CorrespondenceArg {
     Shape,
     /// Vertex 0 matches vertex 0.
     Identity,
-    /// Try each rule's shift and keep the shortest morph (slower).
+    /// Plan with the outline and min-flips rules; keep the one whose vertices travel less.
     Best,
 }
 
@@ -293,7 +295,7 @@ pub(crate) struct MorphArgs {
     #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(2..=100_000))]
     pub(crate) frames: u32,
     /// How each triangle's third vertex travels.
-    #[arg(long, value_enum, default_value_t = PathArg::Hybrid)]
+    #[arg(long, value_enum, default_value_t = PathArg::Straight)]
     pub(crate) path: PathArg,
     /// Triangulation quality of each curve.
     #[arg(long, value_enum, default_value_t = QualityArg::Delaunay)]
@@ -309,7 +311,7 @@ pub(crate) struct MorphArgs {
     #[arg(long, value_enum, default_value_t = IntermediateArg::Target)]
     pub(crate) intermediate: IntermediateArg,
     /// How vertices of the two curves are matched.
-    #[arg(long, value_enum, default_value_t = CorrespondenceArg::MinFlips)]
+    #[arg(long, value_enum, default_value_t = CorrespondenceArg::Best)]
     pub(crate) correspondence: CorrespondenceArg,
     /// Timing of the frames: linear, ease-in, ease-out, ease-in-out or
     /// cubic-bezier(x1,y1,x2,y2).
@@ -402,7 +404,7 @@ mod tests {
             panic!("not morph")
         };
         assert_eq!(m.frames, 60);
-        assert_eq!(m.path, PathArg::Hybrid);
+        assert_eq!(m.path, PathArg::Straight);
         assert_eq!(m.size, (600, 600));
         assert!(Cli::try_parse_from(["immerse", "morph", "a", "b", "--frames", "1"]).is_err());
         assert_eq!(parse_size("640x480"), Ok((640, 480)));

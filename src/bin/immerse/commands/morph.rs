@@ -33,6 +33,7 @@ impl From<CorrespondenceArg> for Correspondence {
     fn from(c: CorrespondenceArg) -> Correspondence {
         match c {
             CorrespondenceArg::Shape => Correspondence::Shape,
+            CorrespondenceArg::Outline => Correspondence::Outline,
             CorrespondenceArg::MinFlips => Correspondence::MinFlips,
             CorrespondenceArg::Pivot => Correspondence::Pivot,
             CorrespondenceArg::Identity => Correspondence::Identity,

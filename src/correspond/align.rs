@@ -1,0 +1,235 @@
+//! Correspondence by what the user sees: the two outlines matched by arc
+//! length, up to a similarity (docs/design.md §7b).
+//!
+//! Each curve's vertices get their position along the outline as a
+//! fraction of its perimeter. For every candidate vertex `k` of the curve
+//! with more vertices that could match the other's vertex 0, the other
+//! curve's vertices are assigned, in order, to the nearest positions of the
+//! first (an increasing assignment), the missing vertices are inserted on
+//! its edges at the first curve's relative positions (its own vertices
+//! stay exactly where they are), and the pair is scored by how far matched vertices are once both
+//! outlines are centred and scaled to unit size (a turn is not forgiven:
+//! the user sees it). The best candidate wins.
+
+use crate::geom::Point;
+
+/// Most candidate shifts scored in full; more vertices are first scored on
+/// every `stride`-th shift and refined around the best.
+const COARSE_SHIFTS: usize = 256;
+
+/// Most vertices used to score one candidate.
+const SCORE_SAMPLES: usize = 512;
+
+/// The two curves brought to the same vertex count with their vertices
+/// matched by arc length: `(a', b', shift)` where vertex `i` of `a'`
+/// matches vertex `(i + shift) % n` of `b'`. The curve with fewer vertices
+/// gets vertices inserted on its edges; original vertices stay exact and in
+/// order. Symmetric: `align(b, a)` pairs the same vertices.
+pub fn align(a: &[Point], b: &[Point]) -> (Vec<Point>, Vec<Point>, usize) {
+    // The curve with fewer vertices is the one that gets insertions; ties
+    // go by coordinates so that both argument orders agree.
+    let lex = |p: &[Point]| -> Vec<u64> {
+        p.iter()
+            .flat_map(|q| [q.x.to_bits(), q.y.to_bits()])
+            .collect()
+    };
+    let swap = match a.len().cmp(&b.len()) {
+        std::cmp::Ordering::Less => false,
+        std::cmp::Ordering::Greater => true,
+        std::cmp::Ordering::Equal => lex(a) > lex(b),
+    };
+    if swap {
+        let (b2, a2, k) = align_small_to_large(b, a);
+        // b2[i] matches a2[(i + k) % n]: a2[j] matches b2[(j + n − k) % n].
+        let n = a2.len();
+        return (a2, b2, (n - k) % n);
+    }
+    align_small_to_large(a, b)
+}
+
+/// Fractions of the perimeter at each vertex, from vertex 0.
+fn positions(p: &[Point]) -> Vec<f64> {
+    let n = p.len();
+    let mut acc = 0.0;
+    let mut out = Vec::with_capacity(n);
+    for i in 0..n {
+        out.push(acc);
+        acc += (p[(i + 1) % n] - p[i]).length();
+    }
+    if acc > 0.0 {
+        for x in &mut out {
+            *x /= acc;
+        }
+    }
+    out
+}
+
+/// `small` (m vertices) against `large` (n ≥ m): returns the padded
+/// `small`, `large` unchanged, and the shift.
+fn align_small_to_large(small: &[Point], large: &[Point]) -> (Vec<Point>, Vec<Point>, usize) {
+    let (m, n) = (small.len(), large.len());
+    let alpha = positions(small);
+    let beta = positions(large);
+    let score = |k: usize| -> f64 {
+        let padded = pad(small, &alpha, &beta, k);
+        residual(&padded, large, k)
+    };
+    let stride = n.div_ceil(COARSE_SHIFTS).max(1);
+    let mut best = (f64::INFINITY, 0usize);
+    for k in (0..n).step_by(stride) {
+        let s = score(k);
+        if s < best.0 {
+            best = (s, k);
+        }
+    }
+    if stride > 1 {
+        let centre = best.1;
+        for d in 1..stride {
+            for k in [(centre + d) % n, (centre + n - d) % n] {
+                let s = score(k);
+                if s < best.0 || (s == best.0 && k < best.1) {
+                    best = (s, k);
+                }
+            }
+        }
+    }
+    let k = best.1;
+    debug_assert!(m <= n);
+    let padded = pad(small, &alpha, &beta, k);
+    let distinct = (0..n).all(|i| padded[i] != padded[(i + 1) % n]);
+    if distinct {
+        return (padded, large.to_vec(), k);
+    }
+    // Edges too short to hold the aligned points: split the longest edges
+    // instead, and match by the same score.
+    let padded = super::insert_vertices(small, n - m).0;
+    let k = (0..n)
+        .min_by(|&i, &j| residual(&padded, large, i).total_cmp(&residual(&padded, large, j)))
+        .unwrap_or(0);
+    (padded, large.to_vec(), k)
+}
+
+/// `small` with vertices inserted so that, with `large` read from vertex
+/// `k`, vertex `i` of each sits at about the same fraction of its
+/// perimeter.
+fn pad(small: &[Point], alpha: &[f64], beta: &[f64], k: usize) -> Vec<Point> {
+    let (m, n) = (small.len(), beta.len());
+    // Positions of large's vertices read from k, relative to vertex k.
+    let rel = |j: usize| (beta[(j + k) % n] - beta[k]).rem_euclid(1.0);
+    // Increasing assignment of small's vertices to large's indices.
+    let mut slot = Vec::with_capacity(m);
+    let mut prev: Option<usize> = None;
+    for (i, &a) in alpha.iter().enumerate() {
+        let lo = prev.map_or(0, |p| p + 1);
+        let hi = n - (m - i);
+        // Nearest index by binary search on the increasing rel(j).
+        let (mut l, mut h) = (lo, hi);
+        while l < h {
+            let mid = (l + h) / 2;
+            if rel(mid) < a { l = mid + 1 } else { h = mid }
+        }
+        let mut j = l.min(hi);
+        if j > lo && (a - rel(j - 1)).abs() <= (rel(j) - a).abs() {
+            j -= 1;
+        }
+        let j = if i == 0 { 0 } else { j.clamp(lo, hi) };
+        slot.push(j);
+        prev = Some(j);
+    }
+    let mut out = Vec::with_capacity(n);
+    for i in 0..m {
+        let (p, q) = (small[i], small[(i + 1) % m]);
+        let j0 = slot[i];
+        let j1 = if i + 1 < m { slot[i + 1] } else { n };
+        let (r0, r1) = (rel(j0), if i + 1 < m { rel(j1) } else { 1.0 });
+        out.push(p);
+        let start = out.len();
+        for j in j0 + 1..j1 {
+            let f = if r1 > r0 {
+                (rel(j) - r0) / (r1 - r0)
+            } else {
+                0.0
+            };
+            out.push(p.lerp(q, f));
+        }
+        // Inserted points must be distinct from each other and from the
+        // edge's ends; where rounding merges them, space them evenly.
+        let distinct = |pts: &[Point]| {
+            std::iter::once(p)
+                .chain(pts.iter().copied())
+                .chain(std::iter::once(q))
+                .collect::<Vec<_>>()
+                .windows(2)
+                .all(|w| w[0] != w[1])
+        };
+        if !distinct(&out[start..]) {
+            let count = j1 - j0;
+            for (idx, j) in (j0 + 1..j1).enumerate() {
+                out[start + idx] = p.lerp(q, (j - j0) as f64 / count as f64);
+            }
+        }
+    }
+    out
+}
+
+/// How far `a` (vertex `i`) is from `b` (vertex `(i + k) % n`) once both
+/// are centred and scaled to unit size, without turning either: the mean
+/// squared distance between matched vertices (0 for the same shape in the
+/// same pose). A turn is not forgiven because the user sees it: a vertex
+/// matched across the shape must travel across it.
+fn residual(a: &[Point], b: &[Point], k: usize) -> f64 {
+    let n = a.len();
+    let step = n.div_ceil(SCORE_SAMPLES).max(1);
+    let idx = (0..n).step_by(step);
+    let count = idx.clone().count() as f64;
+    let (mut ca, mut cb) = (Point::ZERO, Point::ZERO);
+    for i in idx.clone() {
+        ca += a[i];
+        cb += b[(i + k) % n];
+    }
+    ca /= count;
+    cb /= count;
+    let (mut na, mut nb) = (0.0, 0.0);
+    for i in idx.clone() {
+        na += (a[i] - ca).length_squared();
+        nb += (b[(i + k) % n] - cb).length_squared();
+    }
+    if na <= 0.0 || nb <= 0.0 {
+        return f64::INFINITY;
+    }
+    let (sa, sb) = ((count / na).sqrt(), (count / nb).sqrt());
+    idx.map(|i| ((a[i] - ca) * sa - (b[(i + k) % n] - cb) * sb).length_squared())
+        .sum::<f64>()
+        / count
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn circle(n: usize, phase: f64, r: f64) -> Vec<Point> {
+        (0..n)
+            .map(|i| Point::from_angle(phase + std::f64::consts::TAU * i as f64 / n as f64) * r)
+            .collect()
+    }
+
+    #[test]
+    fn originals_stay_and_similar_outlines_match_where_they_should() {
+        // A 12-gon and a turned, scaled 36-gon: every 12-gon vertex should
+        // land on the 36-gon vertex at the same angle (up to the turn).
+        let a = circle(12, 0.0, 1.0);
+        let b = circle(36, 0.3, 2.0);
+        let (a2, b2, k) = align(&a, &b);
+        assert_eq!((a2.len(), b2.len()), (36, 36));
+        assert_eq!(b2, b);
+        let originals: Vec<Point> = a2.iter().copied().filter(|p| a.contains(p)).collect();
+        assert_eq!(originals, a);
+        // Vertex 0 of a sits at index 0 and matches a vertex of b.
+        assert_eq!(a2[0], a[0]);
+        assert!(k < 36);
+        // Symmetric: the other order pairs the same vertices.
+        let (b3, a3, k3) = align(&b, &a);
+        assert_eq!((b3, a3), (b2, a2.clone()));
+        assert_eq!((k + k3) % 36, 0);
+    }
+}

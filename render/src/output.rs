@@ -285,9 +285,9 @@ pub fn check_output_dir(dir: &Path, force: bool) -> Result<(), RenderError> {
             if !force && entries.next().is_some() {
                 return Err(RenderError::DirNotEmpty { path: dir.into() });
             }
-            // Frames are staged beside the folder, then moved into it.
-            check_folder_writable(&dir.join("frame"), dir)?;
-            check_folder_writable(dir, dir)
+            // Frames are staged in a temporary folder inside it, then
+            // moved into place.
+            check_folder_writable(&dir.join("frame"), dir)
         }
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => check_folder_writable(dir, dir),
         Err(e) => Err(RenderError::io(dir, e)),
@@ -457,10 +457,7 @@ impl OutputFile {
                     pending
                         .refuse_if_interrupted()
                         .and_then(|()| temp_builder().tempfile_in(folder))
-                        .map(|file| {
-                            pending.paths.push(file.path().into());
-                            file
-                        })
+                        .inspect(|file| pending.paths.push(file.path().into()))
                         .map_err(|e| RenderError::io(path, os_error(e)))?
                 };
                 Sink::Temp {
@@ -626,15 +623,17 @@ impl Drop for NewOutputDir {
     }
 }
 
-/// A temporary folder beside the output folder in which a sequence is
-/// written, then moved into place by [`Staging::commit`].
+/// A temporary folder in which a sequence is written, then moved into
+/// place by [`Staging::commit`]: beside a new output folder (which it then
+/// becomes), or inside an existing one (so that moving the files never
+/// crosses file systems, even through a symbolic link).
 struct Staging {
     dir: Option<tempfile::TempDir>,
 }
 
 impl Staging {
     fn create(dest: &Path) -> Result<Staging, RenderError> {
-        let parent = parent_of(dest);
+        let parent = if dest.is_dir() { dest } else { parent_of(dest) };
         let mut pending = pending();
         let dir = pending
             .refuse_if_interrupted()
@@ -730,8 +729,8 @@ pub(crate) fn onion<'a>(frames: &'a [Frame], style: &Style) -> Vec<&'a Frame> {
 }
 
 /// Writes a per-frame sequence: `encode(frame, view)` in parallel into
-/// `dir/frame_NNNN.ext`, staged in a temporary folder beside `dir` and
-/// moved into place once every frame is written.
+/// `dir/frame_NNNN.ext`, staged in a temporary folder and moved into
+/// place once every frame is written.
 pub(crate) fn write_sequence(
     frames: &[Frame],
     dir: &Path,
@@ -771,9 +770,9 @@ pub(crate) fn write_sequence(
 /// (zero-padded to at least four digits), with one shared [`View`].
 ///
 /// `dir` is checked with [`check_output_dir`] (with `opts.force`); the
-/// frames are written into a temporary folder beside it and moved in once
-/// all are written, so an interrupted or failed run leaves the folder as
-/// it was. Into an existing folder the frames replace their namesakes, and
+/// frames are written into a temporary folder (beside a new `dir`, inside
+/// an existing one) and moved in once all are written, so an interrupted
+/// or failed run leaves the folder as it was. Into an existing folder the frames replace their namesakes, and
 /// `frame_N.png` files of an earlier, longer run are removed (a shorter
 /// sequence never leaves stale frames behind). When
 /// [`Style::onion_skin`] is on, the first and last frames are drawn as

@@ -277,6 +277,30 @@ fn an_interrupt_removes_partial_outputs_and_exits_130() {
     assert_eq!(status.code(), Some(130));
     assert!(names(d.path()).is_empty(), "{:?}", names(d.path()));
 
+    // Into an existing folder (--force): the old frames stay as they were.
+    let d = tempfile::tempdir().unwrap();
+    let kept = d.path().join("kept");
+    std::fs::create_dir(&kept).unwrap();
+    std::fs::write(kept.join("frame_0000.png"), "old").unwrap();
+    let status = interrupt_when_writing(
+        &kept,
+        &[
+            "morph",
+            &t,
+            &t,
+            "--frames",
+            "3000",
+            "--size",
+            "1200x1200",
+            "-o",
+            ".",
+            "--force",
+        ],
+    );
+    assert_eq!(status.code(), Some(130));
+    assert_eq!(names(&kept), ["frame_0000.png"]);
+    assert_eq!(std::fs::read(kept.join("frame_0000.png")).unwrap(), b"old");
+
     let d = tempfile::tempdir().unwrap();
     let status = interrupt_when_writing(
         d.path(),
@@ -679,7 +703,7 @@ fn one_json_convention() {
         dp,
         &["morph", &t, &t, "--json", "--metrics"],
         2,
-        "immerse: --json and --metrics would all print to standard output; send all but one to a file",
+        "immerse: --json and --metrics would both print to standard output; send one of them to a file",
     );
 }
 

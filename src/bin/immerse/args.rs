@@ -34,7 +34,7 @@ pub(crate) enum Command {
     /// bounds an immersed disk; the answer is exact. Exit code 0 when it is,
     /// 1 when it is not (with the reason).
     #[command(
-        after_help = "Examples:\n  immerse check curves/letter-S-n62.json\n  immerse check ribbon.svg --json"
+        after_help = "Examples:\n  immerse check curves/letter-S-n62.json\n  immerse check ribbon.svg --json\n  immerse check ribbon.svg --json=report.json"
     )]
     Check(CheckArgs),
     /// Triangulate the immersed disk that a curve bounds.
@@ -141,7 +141,7 @@ pub(crate) struct MeshMorphArgs {
     /// Columns of a contact sheet; by default a nearly square grid.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=10_000))]
     pub(crate) columns: Option<u32>,
-    /// Image size in pixels, WIDTHxHEIGHT.
+    /// Image size in pixels, WIDTHxHEIGHT (each at most 8192).
     #[arg(long, value_name = "WxH", default_value = "600x600", value_parser = parse_size)]
     pub(crate) size: (u32, u32),
     /// Frames per second of a GIF (at most 50: GIF delays are whole
@@ -167,7 +167,7 @@ pub(crate) struct DemoArgs {
     /// Number of frames.
     #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(2..=2000))]
     pub(crate) frames: u32,
-    /// Image size in pixels, WIDTHxHEIGHT.
+    /// Image size in pixels, WIDTHxHEIGHT (each at most 8192).
     #[arg(long, value_name = "WxH", default_value = "480x480", value_parser = parse_size)]
     pub(crate) size: (u32, u32),
     /// Write into the folder even if it holds other files (same-named files
@@ -228,7 +228,7 @@ pub(crate) struct TriangulateArgs {
     /// a file).
     #[arg(short, long, value_name = "FILE")]
     pub(crate) output: Option<PathBuf>,
-    /// Image size in pixels, WIDTHxHEIGHT.
+    /// Image size in pixels, WIDTHxHEIGHT (each at most 8192).
     #[arg(long, value_name = "WxH", default_value = "800x800", value_parser = parse_size)]
     pub(crate) size: (u32, u32),
     /// Replace existing output files (-o, --json=FILE).
@@ -352,7 +352,7 @@ pub(crate) struct MorphArgs {
     /// Columns of a contact sheet; by default a nearly square grid.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=10_000))]
     pub(crate) columns: Option<u32>,
-    /// Image size in pixels, WIDTHxHEIGHT.
+    /// Image size in pixels, WIDTHxHEIGHT (each at most 8192).
     #[arg(long, value_name = "WxH", default_value = "600x600", value_parser = parse_size)]
     pub(crate) size: (u32, u32),
     /// Frames per second of a GIF (at most 50: GIF delays are whole

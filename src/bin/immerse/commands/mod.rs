@@ -85,11 +85,15 @@ pub(crate) fn one_stdout(outputs: &[(&str, bool)]) -> anyhow::Result<()> {
         .filter(|(_, s)| *s)
         .map(|(w, _)| *w)
         .collect();
-    if on_stdout.len() > 1 {
-        anyhow::bail!(
-            "{} would all print to standard output; send all but one to a file",
-            on_stdout.join(" and ")
-        );
+    match on_stdout[..] {
+        [a, b] => anyhow::bail!(
+            "{a} and {b} would both print to standard output; send one of them to a file"
+        ),
+        [ref first @ .., last] if on_stdout.len() > 2 => anyhow::bail!(
+            "{} and {last} would all print to standard output; send all but one to a file",
+            first.join(", ")
+        ),
+        _ => {}
     }
     Ok(())
 }

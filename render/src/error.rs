@@ -75,6 +75,31 @@ pub enum RenderError {
         /// The rejected frame rate.
         fps: f64,
     },
+    /// A GIF cannot play this many frames per second: its delays are whole
+    /// hundredths of a second, at least 2.
+    #[error(
+        "a gif plays at most 50 frames per second (its frame delays are whole hundredths of a second, and browsers slow down delays under 2), not {fps}; ask for 50 or fewer, or write png frames or an animated svg"
+    )]
+    GifFpsTooHigh {
+        /// The rejected frame rate.
+        fps: f64,
+    },
+    /// A contact sheet would have more pixels than are rendered.
+    #[error(
+        "a contact sheet of {frames} frames in {columns} columns would be {width}x{height} pixels, over the limit of {limit} pixels; use fewer frames or a smaller size"
+    )]
+    SheetTooLarge {
+        /// Number of frames.
+        frames: usize,
+        /// Columns of the grid.
+        columns: usize,
+        /// Sheet width in pixels.
+        width: u64,
+        /// Sheet height in pixels.
+        height: u64,
+        /// The limit ([`Style::MAX_PIXELS`](crate::Style::MAX_PIXELS)).
+        limit: u64,
+    },
     /// An easing string could not be parsed or has out-of-range parameters.
     #[error(
         "invalid easing '{input}': {reason}; expected linear, ease, ease-in, ease-out, ease-in-out or cubic-bezier(x1,y1,x2,y2) with x1 and x2 in [0,1]"
@@ -108,6 +133,20 @@ pub enum RenderError {
     NotADir {
         /// The path.
         path: PathBuf,
+    },
+    /// An output file's path names a folder.
+    #[error("output path {} is a folder; name a file", path.display())]
+    IsADir {
+        /// The path.
+        path: PathBuf,
+    },
+    /// The folder an output would be written in does not exist.
+    #[error("cannot write {}: there is no folder {}; create it first", path.display(), folder.display())]
+    NoFolder {
+        /// The output path.
+        path: PathBuf,
+        /// The missing folder.
+        folder: PathBuf,
     },
     /// The output file exists.
     #[error("output file {} already exists; pass --force to overwrite it", path.display())]

@@ -16,9 +16,11 @@
 //!          ──> svg_frame / write_svg_sequence / write_animated_svg (SMIL)
 //! ```
 //!
-//! Writers never overwrite silently: [`prepare_output_dir`] and
-//! [`write_atomic`] refuse existing output unless `force` is given, and
-//! every file appears by an atomic rename. [`Easing`] and [`frame_times`]
+//! Writers never overwrite silently: [`check_output_dir`] and
+//! [`OutputFile`] refuse existing output unless `force` is given (and can
+//! check before any work), every file appears by an atomic rename, a frame
+//! sequence by a folder moved into place, and
+//! [`remove_partial_outputs`] removes what an interrupted run was writing. [`Easing`] and [`frame_times`]
 //! turn a frame count into CSS-style eased animation times.
 //!
 //! The crate has no features. It re-exports [`tiny_skia`], whose
@@ -64,11 +66,15 @@ pub use easing::{Easing, frame_times};
 pub use error::RenderError;
 pub use frame::Frame;
 pub use output::{
-    Loop, Output, contact_sheet, frame_file_name, prepare_output_dir, write_atomic,
+    Destination, GIF_MAX_FPS, Loop, NewOutputDir, Output, OutputFile, check_gif_fps,
+    check_output_dir, check_output_file, contact_sheet, contact_sheet_columns, contact_sheet_size,
+    frame_file_name, is_stdout, remove_partial_outputs, resolve_output, write_atomic,
     write_contact_sheet, write_gif, write_png_sequence,
 };
 pub use raster::{encode_png, render};
 pub use style::{Rgba, Style};
-pub use svg::{animated_svg, svg_frame, write_animated_svg, write_svg_sequence};
+pub use svg::{
+    BACKGROUND_ID, OUTLINE_ID, animated_svg, svg_frame, write_animated_svg, write_svg_sequence,
+};
 pub use tiny_skia;
 pub use view::View;

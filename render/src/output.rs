@@ -1,16 +1,24 @@
-//! Safe file output, PNG sequences and GIFs.
+//! Safe file output, PNG sequences and GIFs: the one place where this
+//! crate (and the `immerse` tool) writes files.
 //!
-//! Nothing is overwritten silently: [`prepare_output_dir`] refuses a
-//! non-empty folder and [`write_atomic`] an existing file unless `force` is
-//! set, and every file is written to a temporary file in the same folder
-//! and renamed into place, so an interrupted run leaves no half-written
-//! file behind.
+//! - Nothing is overwritten silently: [`check_output_dir`] refuses a
+//!   non-empty folder and [`OutputFile`] an existing file unless `force` is
+//!   set; both checks can run before any work.
+//! - Nothing is half-written: a file is written to a temporary file in the
+//!   same folder and renamed into place, and a frame sequence is written to
+//!   a temporary folder beside its folder and moved in when complete. The
+//!   temporary names (`.immerse-*.tmp`) are registered while they exist, so
+//!   an interrupt handler can remove them with [`remove_partial_outputs`].
+//! - `-` and `/dev/stdout` are standard output; special files (devices,
+//!   FIFOs) are written through, never renamed over; symbolic links are
+//!   followed ([`resolve_output`]).
 
 use std::fmt;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use rayon::prelude::*;
 
@@ -122,19 +130,154 @@ impl FromStr for Loop {
     }
 }
 
-/// Creates the output folder `dir` (with its parents) or checks that an
-/// existing one may be written into.
-///
-/// An existing non-empty folder is refused unless `force` is set. With
-/// `force` the writers put their files into it, replacing files of the same
-/// name (`frame_0000.png`, ...); nothing else is deleted, so frames left
-/// over from an earlier, longer run stay.
+/// Paths that mean the process's standard output: `-` and `/dev/stdout`
+/// (also `/dev/fd/1` and `/proc/self/fd/1`).
+pub fn is_stdout(path: &Path) -> bool {
+    let s = path.as_os_str();
+    s == "-" || s == "/dev/stdout" || s == "/dev/fd/1" || s == "/proc/self/fd/1"
+}
+
+/// Where the bytes for one output path go, decided by [`resolve_output`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Destination {
+    /// The process's standard output (`-`, `/dev/stdout`).
+    Stdout,
+    /// A special file (a device such as `/dev/null`, a FIFO, a socket, or a
+    /// descriptor path such as `/dev/stderr`): written through, never
+    /// renamed over, and never refused.
+    Special(PathBuf),
+    /// A regular file, new or existing, at this path with every symbolic
+    /// link followed: written to a temporary file beside it and renamed
+    /// into place, so the link (if any) stays a link.
+    File(PathBuf),
+}
+
+/// Decides where the bytes for `path` go (see [`Destination`]); symbolic
+/// links are followed, also when they dangle (the file is then created
+/// where the link points).
 ///
 /// # Errors
 ///
-/// [`RenderError::DirNotEmpty`], [`RenderError::NotADir`], or
-/// [`RenderError::Io`] when the folder cannot be read or created.
-pub fn prepare_output_dir(dir: &Path, force: bool) -> Result<(), RenderError> {
+/// [`RenderError::Io`] for a link loop (more than 40 links) or an
+/// unreadable link.
+pub fn resolve_output(path: &Path) -> Result<Destination, RenderError> {
+    if is_stdout(path) {
+        return Ok(Destination::Stdout);
+    }
+    let s = path.to_string_lossy();
+    if s == "/dev/stderr" || s.starts_with("/dev/fd/") || s.starts_with("/proc/self/fd/") {
+        // Descriptor paths name whatever the descriptor is open on; never
+        // rename over that.
+        return Ok(Destination::Special(path.into()));
+    }
+    let mut p = path.to_path_buf();
+    for _ in 0..40 {
+        match std::fs::symlink_metadata(&p) {
+            Ok(meta) if meta.file_type().is_symlink() => {
+                let target = std::fs::read_link(&p).map_err(|e| RenderError::io(path, e))?;
+                p = match p.parent() {
+                    Some(dir) if target.is_relative() => dir.join(target),
+                    _ => target,
+                };
+            }
+            Ok(meta) if meta.is_file() || meta.is_dir() => return Ok(Destination::File(p)),
+            Ok(_) => return Ok(Destination::Special(p)),
+            Err(_) => return Ok(Destination::File(p)),
+        }
+    }
+    Err(RenderError::io(
+        path,
+        std::io::Error::other("too many levels of symbolic links"),
+    ))
+}
+
+/// The folder a file at `path` is created in (`.` for a bare name).
+fn parent_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    }
+}
+
+/// An OS error without the path tempfile attaches to it, so that messages
+/// never show temporary names.
+fn os_error(e: std::io::Error) -> std::io::Error {
+    if let Some(code) = e.raw_os_error() {
+        return std::io::Error::from_raw_os_error(code);
+    }
+    // tempfile wraps the OS error (with the path) as a custom error.
+    let inner = e
+        .get_ref()
+        .and_then(|r| r.source())
+        .and_then(|s| s.downcast_ref::<std::io::Error>())
+        .and_then(std::io::Error::raw_os_error);
+    match inner {
+        Some(code) => std::io::Error::from_raw_os_error(code),
+        None => std::io::Error::new(e.kind(), e.kind().to_string()),
+    }
+}
+
+/// Checks that the folder of a new file at `path` exists and can be
+/// written in, by creating and removing a temporary file there.
+fn check_folder_writable(path: &Path, shown: &Path) -> Result<(), RenderError> {
+    let folder = parent_of(path);
+    match std::fs::metadata(folder) {
+        Ok(meta) if meta.is_dir() => {}
+        Ok(_) => {
+            return Err(RenderError::NoFolder {
+                path: shown.into(),
+                folder: folder.into(),
+            });
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Err(RenderError::NoFolder {
+                path: shown.into(),
+                folder: folder.into(),
+            });
+        }
+        Err(e) => return Err(RenderError::io(shown, e)),
+    }
+    temp_builder()
+        .tempfile_in(folder)
+        .map(drop)
+        .map_err(|e| RenderError::io(shown, os_error(e)))
+}
+
+/// Checks, before any work, that a file can be written at `path`: standard
+/// output and special files always can; a regular file needs its folder to
+/// exist and be writable, and an existing file needs `force`.
+///
+/// # Errors
+///
+/// [`RenderError::FileExists`], [`RenderError::IsADir`],
+/// [`RenderError::NoFolder`], or [`RenderError::Io`] when the folder is not
+/// writable.
+pub fn check_output_file(path: &Path, force: bool) -> Result<(), RenderError> {
+    match resolve_output(path)? {
+        Destination::Stdout | Destination::Special(_) => Ok(()),
+        Destination::File(real) => {
+            match std::fs::metadata(&real) {
+                Ok(meta) if meta.is_dir() => {
+                    return Err(RenderError::IsADir { path: path.into() });
+                }
+                Ok(_) if !force => return Err(RenderError::FileExists { path: path.into() }),
+                _ => {}
+            }
+            check_folder_writable(&real, path)
+        }
+    }
+}
+
+/// Checks, before any work, that a folder of frames can be written at
+/// `dir`: a missing folder needs its parent to exist and be writable; an
+/// existing one must be a folder, writable, and empty unless `force`.
+///
+/// # Errors
+///
+/// [`RenderError::DirNotEmpty`], [`RenderError::NotADir`],
+/// [`RenderError::NoFolder`], or [`RenderError::Io`].
+pub fn check_output_dir(dir: &Path, force: bool) -> Result<(), RenderError> {
     match std::fs::metadata(dir) {
         Ok(meta) if !meta.is_dir() => Err(RenderError::NotADir { path: dir.into() }),
         Ok(_) => {
@@ -142,59 +285,432 @@ pub fn prepare_output_dir(dir: &Path, force: bool) -> Result<(), RenderError> {
             if !force && entries.next().is_some() {
                 return Err(RenderError::DirNotEmpty { path: dir.into() });
             }
-            Ok(())
+            // Frames are staged in a temporary folder inside it, then
+            // moved into place.
+            check_folder_writable(&dir.join("frame"), dir)
         }
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-            std::fs::create_dir_all(dir).map_err(|e| RenderError::io(dir, e))
-        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => check_folder_writable(dir, dir),
         Err(e) => Err(RenderError::io(dir, e)),
     }
 }
 
-/// Writes `bytes` to `path` atomically: into a temporary file in the same
-/// folder, which is then renamed to `path`. Without `force` an existing
-/// `path` is refused (and left untouched, even if it appears meanwhile).
-///
-/// # Errors
-///
-/// [`RenderError::FileExists`], or [`RenderError::Io`] when the folder is
-/// not writable. On error no temporary file is left behind.
-pub fn write_atomic(path: &Path, bytes: &[u8], force: bool) -> Result<(), RenderError> {
-    if !force && std::fs::symlink_metadata(path).is_ok() {
-        return Err(RenderError::FileExists { path: path.into() });
+/// Temporary files and folders being written, removed by
+/// [`remove_partial_outputs`] when the process is interrupted.
+struct Pending {
+    /// Set once [`remove_partial_outputs`] ran: no new temporary output may
+    /// start.
+    interrupted: bool,
+    paths: Vec<PathBuf>,
+}
+
+static PENDING: Mutex<Pending> = Mutex::new(Pending {
+    interrupted: false,
+    paths: Vec::new(),
+});
+
+fn pending() -> MutexGuard<'static, Pending> {
+    PENDING.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+impl Pending {
+    fn forget(&mut self, path: &Path) {
+        self.paths.retain(|p| p != path);
     }
-    let parent = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
+
+    fn refuse_if_interrupted(&self) -> std::io::Result<()> {
+        if self.interrupted {
+            Err(std::io::Error::new(
+                std::io::ErrorKind::Interrupted,
+                "interrupted",
+            ))
+        } else {
+            Ok(())
+        }
+    }
+}
+
+/// Removes every temporary file and folder an unfinished writer of this
+/// crate holds (`.immerse-*.tmp`), and makes later writers fail; returns
+/// how many were removed. Call it from a Ctrl-C or termination handler just
+/// before the process exits, so that an interrupted run leaves nothing
+/// half-written behind. Finished outputs are not touched.
+pub fn remove_partial_outputs() -> usize {
+    let mut pending = pending();
+    pending.interrupted = true;
+    let mut removed = 0;
+    for p in std::mem::take(&mut pending.paths) {
+        let gone = if p.is_dir() {
+            std::fs::remove_dir_all(&p)
+        } else {
+            std::fs::remove_file(&p)
+        };
+        removed += usize::from(gone.is_ok());
+    }
+    // The guard is dropped here; a writer that starts later sees
+    // `interrupted` and fails before creating anything.
+    removed
+}
+
+/// The builder of temporary files (`folder` false) and folders: named
+/// `.immerse-*.tmp`, with ordinary permissions (0666 or 0777 less the
+/// umask), not the private 0600 or 0700 of temporary files, since they are
+/// renamed into place.
+fn temp_builder_for(folder: bool) -> tempfile::Builder<'static, 'static> {
     let mut builder = tempfile::Builder::new();
     builder.prefix(".immerse-").suffix(".tmp");
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
-        // Ordinary file permissions (subject to the umask), not the private
-        // 0600 of temporary files, since the file is renamed into place.
-        builder.permissions(std::fs::Permissions::from_mode(0o666));
+        let mode = if folder { 0o777 } else { 0o666 };
+        builder.permissions(std::fs::Permissions::from_mode(mode));
     }
-    let mut tmp = builder
-        .tempfile_in(parent)
-        .map_err(|e| RenderError::io(parent, e))?;
-    tmp.write_all(bytes)
-        .and_then(|()| tmp.flush())
-        .map_err(|e| RenderError::io(path, e))?;
-    let persisted = if force {
-        tmp.persist(path)
-    } else {
-        tmp.persist_noclobber(path)
-    };
-    // On failure the returned temporary file is dropped, which deletes it.
-    persisted.map(drop).map_err(|e| {
-        if e.error.kind() == std::io::ErrorKind::AlreadyExists {
-            RenderError::FileExists { path: path.into() }
-        } else {
-            RenderError::io(path, e.error)
+    #[cfg(not(unix))]
+    let _ = folder;
+    builder
+}
+
+fn temp_builder() -> tempfile::Builder<'static, 'static> {
+    temp_builder_for(false)
+}
+
+enum Sink {
+    Stdout(std::io::Stdout),
+    Special(std::io::BufWriter<std::fs::File>),
+    Temp {
+        file: Option<std::io::BufWriter<tempfile::NamedTempFile>>,
+        dest: PathBuf,
+        force: bool,
+    },
+}
+
+/// One output file being written: standard output, a special file written
+/// through, or a temporary file renamed into place by
+/// [`finish`](OutputFile::finish) (see [`Destination`]). Dropped without
+/// `finish`, the temporary file is removed; so is it, by
+/// [`remove_partial_outputs`], when the process is interrupted.
+///
+/// Write errors never name the temporary file.
+///
+/// # Examples
+///
+/// ```
+/// use std::io::Write;
+/// use immerse_render::OutputFile;
+///
+/// let dir = tempfile::tempdir()?;
+/// let path = dir.path().join("hello.txt");
+/// let mut out = OutputFile::create(&path, false)?;
+/// out.write_all(b"hello")?;
+/// out.finish()?;
+/// assert_eq!(std::fs::read(&path)?, b"hello");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub struct OutputFile {
+    shown: PathBuf,
+    sink: Sink,
+}
+
+impl std::fmt::Debug for OutputFile {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("OutputFile")
+            .field("path", &self.shown)
+            .finish_non_exhaustive()
+    }
+}
+
+impl OutputFile {
+    /// Starts writing `path` (see [`Destination`]). Without `force` an
+    /// existing regular file is refused, now and again when the file is put
+    /// in place.
+    ///
+    /// # Errors
+    ///
+    /// As [`check_output_file`], or [`RenderError::Io`] when a special file
+    /// cannot be opened.
+    pub fn create(path: &Path, force: bool) -> Result<OutputFile, RenderError> {
+        let sink = match resolve_output(path)? {
+            Destination::Stdout => Sink::Stdout(std::io::stdout()),
+            Destination::Special(p) => {
+                let file = std::fs::OpenOptions::new()
+                    .append(true)
+                    .open(&p)
+                    .map_err(|e| RenderError::io(path, e))?;
+                Sink::Special(std::io::BufWriter::new(file))
+            }
+            Destination::File(dest) => {
+                match std::fs::metadata(&dest) {
+                    Ok(meta) if meta.is_dir() => {
+                        return Err(RenderError::IsADir { path: path.into() });
+                    }
+                    Ok(_) if !force => return Err(RenderError::FileExists { path: path.into() }),
+                    _ => {}
+                }
+                let folder = parent_of(&dest);
+                if !folder.is_dir() {
+                    return Err(RenderError::NoFolder {
+                        path: path.into(),
+                        folder: folder.into(),
+                    });
+                }
+                let file = {
+                    let mut pending = pending();
+                    pending
+                        .refuse_if_interrupted()
+                        .and_then(|()| temp_builder().tempfile_in(folder))
+                        .inspect(|file| pending.paths.push(file.path().into()))
+                        .map_err(|e| RenderError::io(path, os_error(e)))?
+                };
+                Sink::Temp {
+                    file: Some(std::io::BufWriter::with_capacity(1 << 16, file)),
+                    dest,
+                    force,
+                }
+            }
+        };
+        Ok(OutputFile {
+            shown: path.into(),
+            sink,
+        })
+    }
+
+    /// Flushes the data and puts the file in place.
+    ///
+    /// # Errors
+    ///
+    /// [`RenderError::FileExists`] when, without `force`, a file appeared
+    /// at the path meanwhile, or [`RenderError::Io`]. Nothing is left
+    /// behind on error.
+    pub fn finish(mut self) -> Result<(), RenderError> {
+        let io = |e: std::io::Error| RenderError::io(&self.shown, os_error(e));
+        match &mut self.sink {
+            Sink::Stdout(out) => out.flush().map_err(io),
+            Sink::Special(out) => out.flush().map_err(io),
+            Sink::Temp { file, dest, force } => {
+                let Some(buffered) = file.take() else {
+                    return Ok(());
+                };
+                let tmp = buffered.into_inner().map_err(|e| io(e.into_error()))?;
+                let mut pending = pending();
+                let tmp_path = tmp.path().to_path_buf();
+                let persisted = if *force {
+                    tmp.persist(&*dest)
+                } else {
+                    tmp.persist_noclobber(&*dest)
+                };
+                // On failure the returned temporary file is dropped, which
+                // deletes it, before the registry forgets it.
+                let result = persisted.map(drop).map_err(|e| {
+                    if e.error.kind() == std::io::ErrorKind::AlreadyExists {
+                        RenderError::FileExists {
+                            path: self.shown.clone(),
+                        }
+                    } else {
+                        RenderError::io(&self.shown, os_error(e.error))
+                    }
+                });
+                pending.forget(&tmp_path);
+                result
+            }
         }
-    })
+    }
+}
+
+impl Write for OutputFile {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        match &mut self.sink {
+            Sink::Stdout(out) => out.write(buf),
+            Sink::Special(out) => out.write(buf),
+            Sink::Temp { file, .. } => match file {
+                Some(f) => f.write(buf).map_err(os_error),
+                None => Ok(0),
+            },
+        }
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        match &mut self.sink {
+            Sink::Stdout(out) => out.flush(),
+            Sink::Special(out) => out.flush(),
+            Sink::Temp { file, .. } => match file {
+                Some(f) => f.flush().map_err(os_error),
+                None => Ok(()),
+            },
+        }
+    }
+}
+
+impl Drop for OutputFile {
+    fn drop(&mut self) {
+        if let Sink::Temp { file, .. } = &mut self.sink
+            && let Some(buffered) = file.take()
+        {
+            let mut pending = pending();
+            let tmp_path = buffered.get_ref().path().to_path_buf();
+            // Dropping the temporary file deletes it.
+            drop(buffered.into_parts().0);
+            pending.forget(&tmp_path);
+        }
+    }
+}
+
+/// Writes `bytes` to `path` with an [`OutputFile`]: a regular file is
+/// written to a temporary file in its folder and renamed into place
+/// (symbolic links are followed); `-` and `/dev/stdout` are standard
+/// output; special files are written through. Without `force` an existing
+/// regular file is refused (and left untouched, even if it appears
+/// meanwhile).
+///
+/// # Errors
+///
+/// As [`OutputFile::create`] and [`OutputFile::finish`]. On error no
+/// temporary file is left behind.
+pub fn write_atomic(path: &Path, bytes: &[u8], force: bool) -> Result<(), RenderError> {
+    let mut out = OutputFile::create(path, force)?;
+    out.write_all(bytes)
+        .map_err(|e| RenderError::io(path, os_error(e)))?;
+    out.finish()
+}
+
+/// A folder created for this run's output, removed again unless
+/// [`keep`](NewOutputDir::keep) is called (also when the process is
+/// interrupted, by [`remove_partial_outputs`]).
+#[derive(Debug)]
+pub struct NewOutputDir {
+    path: Option<PathBuf>,
+}
+
+impl NewOutputDir {
+    /// Creates the folder `dir`, whose parent must exist.
+    ///
+    /// # Errors
+    ///
+    /// [`RenderError::NoFolder`] or [`RenderError::Io`] (also when `dir`
+    /// exists).
+    pub fn create(dir: &Path) -> Result<NewOutputDir, RenderError> {
+        let parent = parent_of(dir);
+        if !parent.is_dir() {
+            return Err(RenderError::NoFolder {
+                path: dir.into(),
+                folder: parent.into(),
+            });
+        }
+        let mut pending = pending();
+        pending
+            .refuse_if_interrupted()
+            .and_then(|()| std::fs::create_dir(dir))
+            .map_err(|e| RenderError::io(dir, e))?;
+        pending.paths.push(dir.into());
+        Ok(NewOutputDir {
+            path: Some(dir.into()),
+        })
+    }
+
+    /// Keeps the folder and everything in it.
+    pub fn keep(mut self) {
+        if let Some(p) = self.path.take() {
+            pending().forget(&p);
+        }
+    }
+}
+
+impl Drop for NewOutputDir {
+    fn drop(&mut self) {
+        if let Some(p) = self.path.take() {
+            let mut pending = pending();
+            let _ = std::fs::remove_dir_all(&p);
+            pending.forget(&p);
+        }
+    }
+}
+
+/// A temporary folder in which a sequence is written, then moved into
+/// place by [`Staging::commit`]: beside a new output folder (which it then
+/// becomes), or inside an existing one (so that moving the files never
+/// crosses file systems, even through a symbolic link).
+struct Staging {
+    dir: Option<tempfile::TempDir>,
+}
+
+impl Staging {
+    fn create(dest: &Path) -> Result<Staging, RenderError> {
+        let parent = if dest.is_dir() { dest } else { parent_of(dest) };
+        let mut pending = pending();
+        let dir = pending
+            .refuse_if_interrupted()
+            .and_then(|()| temp_builder_for(true).tempdir_in(parent))
+            .map_err(|e| RenderError::io(dest, os_error(e)))?;
+        pending.paths.push(dir.path().into());
+        Ok(Staging { dir: Some(dir) })
+    }
+
+    fn path(&self) -> &Path {
+        self.dir.as_ref().map_or(Path::new("."), |d| d.path())
+    }
+
+    /// Puts the staged files `names` into `dest`: a missing folder is the
+    /// staging folder renamed; into an existing one each file is moved,
+    /// replacing its namesake, and then every older `frame_N.ext` of
+    /// this tool's naming that is not one of `names` is removed, so that no
+    /// stale frame of an earlier, longer run is left.
+    fn commit(mut self, dest: &Path, names: &[String], ext: &str) -> Result<(), RenderError> {
+        let Some(dir) = self.dir.take() else {
+            return Ok(());
+        };
+        let mut pending = pending();
+        let staged = dir.path().to_path_buf();
+        let io = |e: std::io::Error| RenderError::io(dest, os_error(e));
+        let result = if std::fs::symlink_metadata(dest).is_err() {
+            std::fs::rename(&staged, dest).map_err(io).map(|()| {
+                // Renamed: nothing is left to clean up.
+                let _ = dir.keep();
+            })
+        } else {
+            let moved = names.iter().try_for_each(|name| {
+                std::fs::rename(staged.join(name), dest.join(name)).map_err(io)
+            });
+            drop(dir);
+            moved.and_then(|()| remove_stale_frames(dest, names, ext))
+        };
+        pending.forget(&staged);
+        result
+    }
+}
+
+impl Drop for Staging {
+    fn drop(&mut self) {
+        if let Some(dir) = self.dir.take() {
+            let mut pending = pending();
+            let staged = dir.path().to_path_buf();
+            drop(dir);
+            pending.forget(&staged);
+        }
+    }
+}
+
+/// True for `frame_` + digits + `.ext`: the names [`frame_file_name`]
+/// gives.
+fn is_frame_name(name: &str, ext: &str) -> bool {
+    name.strip_prefix("frame_")
+        .and_then(|rest| rest.strip_suffix(ext))
+        .and_then(|rest| rest.strip_suffix('.'))
+        .is_some_and(|digits| !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// Removes the `frame_N.ext` files in `dir` that are not in `keep`.
+fn remove_stale_frames(dir: &Path, keep: &[String], ext: &str) -> Result<(), RenderError> {
+    let keep: std::collections::HashSet<&str> = keep.iter().map(String::as_str).collect();
+    let entries = std::fs::read_dir(dir).map_err(|e| RenderError::io(dir, e))?;
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some(name) = name.to_str() else { continue };
+        if is_frame_name(name, ext)
+            && !keep.contains(name)
+            && entry.file_type().is_ok_and(|t| t.is_file())
+        {
+            std::fs::remove_file(entry.path()).map_err(|e| RenderError::io(entry.path(), e))?;
+        }
+    }
+    Ok(())
 }
 
 /// The file name of frame `i` of `n`: `frame_0000.ext`, zero-padded to at
@@ -213,7 +729,8 @@ pub(crate) fn onion<'a>(frames: &'a [Frame], style: &Style) -> Vec<&'a Frame> {
 }
 
 /// Writes a per-frame sequence: `encode(frame, view)` in parallel into
-/// `dir/frame_NNNN.ext`.
+/// `dir/frame_NNNN.ext`, staged in a temporary folder and moved into
+/// place once every frame is written.
 pub(crate) fn write_sequence(
     frames: &[Frame],
     dir: &Path,
@@ -227,27 +744,37 @@ pub(crate) fn write_sequence(
         return Err(RenderError::NoFrames);
     }
     style.check_size()?;
-    prepare_output_dir(dir, opts.force)?;
+    check_output_dir(dir, opts.force)?;
+    let staging = Staging::create(dir)?;
     let view = View::fit(frames, style);
     let done = AtomicUsize::new(0);
+    let names: Vec<String> = (0..frames.len())
+        .map(|i| frame_file_name(i, frames.len(), ext))
+        .collect();
     frames
         .par_iter()
+        .zip(&names)
         .enumerate()
-        .map(|(i, frame)| {
+        .try_for_each(|(i, (frame, name))| {
             let bytes = encode(frame, &view).map_err(|e| e.in_frame(i))?;
-            let path = dir.join(frame_file_name(i, frames.len(), ext));
-            write_atomic(&path, &bytes, opts.force)?;
+            std::fs::write(staging.path().join(name), &bytes)
+                .map_err(|e| RenderError::io(dir.join(name), os_error(e)))?;
             progress(done.fetch_add(1, Ordering::Relaxed) + 1);
-            Ok(path)
-        })
-        .collect()
+            Ok::<(), RenderError>(())
+        })?;
+    staging.commit(dir, &names, ext)?;
+    Ok(names.iter().map(|n| dir.join(n)).collect())
 }
 
 /// Renders `frames` in parallel and writes them as `dir/frame_0000.png`, ...
 /// (zero-padded to at least four digits), with one shared [`View`].
 ///
-/// `dir` is prepared with [`prepare_output_dir`] and every file written
-/// with [`write_atomic`], both with `opts.force`. When
+/// `dir` is checked with [`check_output_dir`] (with `opts.force`); the
+/// frames are written into a temporary folder (beside a new `dir`, inside
+/// an existing one) and moved in once all are written, so an interrupted
+/// or failed run leaves the folder as it was. Into an existing folder the frames replace their namesakes, and
+/// `frame_N.png` files of an earlier, longer run are removed (a shorter
+/// sequence never leaves stale frames behind). When
 /// [`Style::onion_skin`] is on, the first and last frames are drawn as
 /// ghosts behind every frame. `progress` is called from worker threads with
 /// the number of frames finished so far.
@@ -274,21 +801,52 @@ pub fn write_png_sequence(
 /// bounds memory to a few dozen RGBA images.
 const GIF_BATCH: usize = 16;
 
-/// Renders `frames` and writes them as one animated GIF at `path`.
+/// The highest frame rate a GIF plays: its frame delays are whole
+/// hundredths of a second, and browsers slow down delays under 2.
+pub const GIF_MAX_FPS: f64 = 50.0;
+
+/// Checks that a GIF can play `fps` frames per second: a positive rate of
+/// at most [`GIF_MAX_FPS`].
 ///
-/// Frames are rendered and quantised (per-frame palettes, speed
-/// [`Output::gif_speed`]) and LZW-compressed in parallel batches, then
-/// written in order. The frame delay is `100 / fps` hundredths of a second,
-/// at least 2 (browsers slow down shorter delays). [`Loop::Once`] plays once,
-/// [`Loop::Loop`] repeats forever, [`Loop::PingPong`] appends the frames
-/// reversed without repeating the ends and repeats forever. `progress` gets
-/// the number of frames finished so far (of the played sequence).
+/// # Errors
+///
+/// [`RenderError::BadFps`] or [`RenderError::GifFpsTooHigh`].
+pub fn check_gif_fps(fps: f64) -> Result<(), RenderError> {
+    check_fps(fps)?;
+    if fps > GIF_MAX_FPS {
+        return Err(RenderError::GifFpsTooHigh { fps });
+    }
+    Ok(())
+}
+
+/// The delay of the `k`-th played GIF frame in hundredths of a second:
+/// delays alternate (3, 3, 4, ... at 30 fps) so that frame `k` starts at
+/// `k / fps` seconds, rounded to the hundredth.
+fn gif_delay(k: usize, fps: f64) -> u16 {
+    let at = |k: usize| (100.0 * k as f64 / fps).round();
+    (at(k + 1) - at(k)).clamp(2.0, f64::from(u16::MAX)) as u16
+}
+
+/// Renders `frames` and writes them as one animated GIF at `path` (an
+/// [`OutputFile`]: standard output for `-`).
+///
+/// The file is streamed: frames are rendered and quantised (per-frame
+/// palettes, speed [`Output::gif_speed`]) and LZW-compressed in parallel
+/// batches, then written in order to the temporary file, which is renamed
+/// into place at the end. GIF frame delays are whole hundredths of a
+/// second, so they alternate (at 30 fps: 3, 3, 4, ...) to keep the average
+/// rate exact; rates above [`GIF_MAX_FPS`] are refused. [`Loop::Once`]
+/// plays once, [`Loop::Loop`] repeats forever, [`Loop::PingPong`] appends
+/// the frames reversed without repeating the ends and repeats forever.
+/// `progress` gets the number of frames finished so far (of the played
+/// sequence).
 ///
 /// # Errors
 ///
 /// [`RenderError::NoFrames`], [`RenderError::BadFps`],
-/// [`RenderError::ImageTooLarge`] beyond 65535 pixels a side, an
-/// output-safety error for `path`, a frame's error, or [`RenderError::Gif`].
+/// [`RenderError::GifFpsTooHigh`], [`RenderError::ImageTooLarge`] beyond
+/// 65535 pixels a side, an output-safety error for `path`, a frame's error,
+/// or [`RenderError::Gif`].
 pub fn write_gif(
     frames: &[Frame],
     path: &Path,
@@ -301,7 +859,7 @@ pub fn write_gif(
     if frames.is_empty() {
         return Err(RenderError::NoFrames);
     }
-    check_fps(fps)?;
+    check_gif_fps(fps)?;
     style.check_size()?;
     let too_large = || RenderError::ImageTooLarge {
         width: style.width,
@@ -310,23 +868,24 @@ pub fn write_gif(
     };
     let w = u16::try_from(style.width).map_err(|_| too_large())?;
     let h = u16::try_from(style.height).map_err(|_| too_large())?;
-    if !opts.force && std::fs::symlink_metadata(path).is_ok() {
-        return Err(RenderError::FileExists { path: path.into() });
-    }
-    let delay = (100.0 / fps).round().clamp(2.0, f64::from(u16::MAX)) as u16;
     let speed = opts.gif_speed.clamp(1, 30);
     let view = View::fit(frames, style);
     let ghosts = onion(frames, style);
 
-    let mut out = Vec::new();
-    let mut encoder = gif::Encoder::new(&mut out, w, h, &[]).map_err(RenderError::Gif)?;
+    let out = OutputFile::create(path, opts.force)?;
+    let gif_error = |e: gif::EncodingError| match e {
+        gif::EncodingError::Io(io) => RenderError::io(path, os_error(io)),
+        other => RenderError::Gif(other),
+    };
+    let mut encoder = gif::Encoder::new(out, w, h, &[]).map_err(gif_error)?;
     if looping != Loop::Once {
         encoder
             .set_repeat(gif::Repeat::Infinite)
-            .map_err(RenderError::Gif)?;
+            .map_err(gif_error)?;
     }
-    let mut encoded: Vec<gif::Frame<'static>> = Vec::with_capacity(frames.len());
+    let mut encoded: Vec<gif::Frame<'static>> = Vec::new();
     let done = AtomicUsize::new(0);
+    let mut played = 0;
     for (b, batch) in frames.chunks(GIF_BATCH).enumerate() {
         let mut quantised = batch
             .par_iter()
@@ -336,31 +895,30 @@ pub fn write_gif(
                 let pixmap = render(frame, &view, style, &ghosts).map_err(|e| e.in_frame(i))?;
                 let mut rgba = pixmap.take_demultiplied();
                 let mut gf = gif::Frame::from_rgba_speed(w, h, &mut rgba, speed);
-                gf.delay = delay;
                 gf.make_lzw_pre_encoded();
                 progress(done.fetch_add(1, Ordering::Relaxed) + 1);
                 Ok(gf)
             })
             .collect::<Result<Vec<_>, RenderError>>()?;
-        for gf in &quantised {
-            encoder
-                .write_lzw_pre_encoded_frame(gf)
-                .map_err(RenderError::Gif)?;
+        for gf in &mut quantised {
+            gf.delay = gif_delay(played, fps);
+            played += 1;
+            encoder.write_lzw_pre_encoded_frame(gf).map_err(gif_error)?;
         }
         if looping == Loop::PingPong {
             encoded.append(&mut quantised);
         }
     }
     if looping == Loop::PingPong && encoded.len() > 2 {
-        for gf in encoded[1..encoded.len() - 1].iter().rev() {
-            encoder
-                .write_lzw_pre_encoded_frame(gf)
-                .map_err(RenderError::Gif)?;
+        let last = encoded.len() - 1;
+        for gf in encoded[1..last].iter_mut().rev() {
+            gf.delay = gif_delay(played, fps);
+            played += 1;
+            encoder.write_lzw_pre_encoded_frame(gf).map_err(gif_error)?;
             progress(done.fetch_add(1, Ordering::Relaxed) + 1);
         }
     }
-    encoder.into_inner().map_err(RenderError::Gif)?;
-    write_atomic(path, &out, opts.force)
+    encoder.into_inner().map_err(gif_error)?.finish()
 }
 
 pub(crate) fn check_fps(fps: f64) -> Result<(), RenderError> {
@@ -371,14 +929,61 @@ pub(crate) fn check_fps(fps: f64) -> Result<(), RenderError> {
     }
 }
 
-/// Renders `frames` side by side into one image, `columns` per row (0
-/// means one row), each cell `style.width` × `style.height`, all with one
-/// shared [`View`]: a contact sheet for comparing in-betweens at a glance.
+/// The columns of a contact sheet of `frames` frames when `columns` are
+/// asked for: `columns` (at most `frames`), or for 0 the nearly square grid
+/// of ⌈√frames⌉ columns.
+pub fn contact_sheet_columns(frames: usize, columns: usize) -> usize {
+    let cols = if columns == 0 {
+        (1..=frames.max(1)).find(|c| c * c >= frames).unwrap_or(1)
+    } else {
+        columns
+    };
+    cols.clamp(1, frames.max(1))
+}
+
+/// The size in pixels of a contact sheet of `frames` frames, `columns` per
+/// row (0: a nearly square grid, see [`contact_sheet_columns`]); cheap, so
+/// callers can check it before computing the frames.
 ///
 /// # Errors
 ///
-/// [`RenderError::NoFrames`], a size error (also when the whole sheet is
-/// too large), or a frame's error.
+/// A size error for `style`, or [`RenderError::SheetTooLarge`] when the
+/// sheet has more than [`Style::MAX_PIXELS`] pixels.
+pub fn contact_sheet_size(
+    frames: usize,
+    style: &Style,
+    columns: usize,
+) -> Result<(u32, u32), RenderError> {
+    style.check_size()?;
+    let cols = contact_sheet_columns(frames, columns);
+    let rows = frames.max(1).div_ceil(cols);
+    let (w, h) = (u64::from(style.width), u64::from(style.height));
+    let (sw, sh) = (w * cols as u64, h * rows as u64);
+    let too_large = || RenderError::SheetTooLarge {
+        frames,
+        columns: cols,
+        width: sw,
+        height: sh,
+        limit: Style::MAX_PIXELS,
+    };
+    if sw.saturating_mul(sh) > Style::MAX_PIXELS {
+        return Err(too_large());
+    }
+    Ok((
+        u32::try_from(sw).map_err(|_| too_large())?,
+        u32::try_from(sh).map_err(|_| too_large())?,
+    ))
+}
+
+/// Renders `frames` into one image, `columns` per row (0: a nearly square
+/// grid, see [`contact_sheet_columns`]), each cell `style.width` ×
+/// `style.height`, all with one shared [`View`]: a contact sheet for
+/// comparing in-betweens at a glance.
+///
+/// # Errors
+///
+/// [`RenderError::NoFrames`], a size error ([`contact_sheet_size`]), or a
+/// frame's error.
 pub fn contact_sheet(
     frames: &[Frame],
     style: &Style,
@@ -387,33 +992,16 @@ pub fn contact_sheet(
     if frames.is_empty() {
         return Err(RenderError::NoFrames);
     }
-    style.check_size()?;
-    let cols = if columns == 0 {
-        frames.len()
-    } else {
-        columns.min(frames.len())
-    };
-    let rows = frames.len().div_ceil(cols);
+    let (sw, sh) = contact_sheet_size(frames.len(), style, columns)?;
+    let cols = contact_sheet_columns(frames.len(), columns);
     let (w, h) = (style.width, style.height);
-    let too_large = || RenderError::ImageTooLarge {
-        width: w.saturating_mul(cols as u32),
-        height: h.saturating_mul(rows as u32),
-        reason: "a contact sheet is limited to Style::MAX_PIXELS; use fewer frames or a smaller --size",
-    };
-    let (sw, sh) = (
-        u32::try_from(cols)
-            .ok()
-            .and_then(|c| w.checked_mul(c))
-            .ok_or_else(too_large)?,
-        u32::try_from(rows)
-            .ok()
-            .and_then(|r| h.checked_mul(r))
-            .ok_or_else(too_large)?,
-    );
-    if u64::from(sw) * u64::from(sh) > Style::MAX_PIXELS {
-        return Err(too_large());
-    }
-    let mut sheet = tiny_skia::Pixmap::new(sw, sh).ok_or_else(too_large)?;
+    let mut sheet = tiny_skia::Pixmap::new(sw, sh).ok_or(RenderError::SheetTooLarge {
+        frames: frames.len(),
+        columns: cols,
+        width: u64::from(sw),
+        height: u64::from(sh),
+        limit: Style::MAX_PIXELS,
+    })?;
     let view = View::fit(frames, style);
     let ghosts = onion(frames, style);
     let cells: Vec<tiny_skia::Pixmap> = frames
@@ -435,7 +1023,8 @@ pub fn contact_sheet(
     Ok(sheet)
 }
 
-/// Writes [`contact_sheet`] as a PNG with [`write_atomic`].
+/// Writes [`contact_sheet`] as a PNG with [`write_atomic`]; the file and
+/// the sheet's size are checked before anything is rendered.
 ///
 /// # Errors
 ///
@@ -447,9 +1036,8 @@ pub fn write_contact_sheet(
     columns: usize,
     opts: &Output,
 ) -> Result<(), RenderError> {
-    if !opts.force && std::fs::symlink_metadata(path).is_ok() {
-        return Err(RenderError::FileExists { path: path.into() });
-    }
+    check_output_file(path, opts.force)?;
+    contact_sheet_size(frames.len(), style, columns)?;
     let sheet = contact_sheet(frames, style, columns)?;
     write_atomic(path, &encode_png(&sheet)?, opts.force)
 }

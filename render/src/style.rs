@@ -263,6 +263,9 @@ impl Style {
         1.0 - (1.0 - a).powf(depth.max(0.0))
     }
 
+    /// The longest side, in pixels, of an image that is rendered.
+    pub const MAX_SIDE: u32 = 8192;
+
     /// The largest image, in pixels, that is rendered: 8192 × 8192. Each
     /// frame needs two RGBA buffers of this size (512 MiB at the limit), and
     /// allocating more could abort the process instead of failing.
@@ -275,11 +278,14 @@ impl Style {
                 height: self.height,
             });
         }
-        if u64::from(self.width) * u64::from(self.height) > Style::MAX_PIXELS {
+        if self.width > Style::MAX_SIDE
+            || self.height > Style::MAX_SIDE
+            || u64::from(self.width) * u64::from(self.height) > Style::MAX_PIXELS
+        {
             return Err(RenderError::ImageTooLarge {
                 width: self.width,
                 height: self.height,
-                reason: "at most 67108864 pixels (8192x8192) are rendered",
+                reason: "images are at most 8192 pixels a side",
             });
         }
         Ok(())

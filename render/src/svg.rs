@@ -25,6 +25,13 @@ use std::path::{Path, PathBuf};
 use crate::output::{check_fps, onion, write_sequence};
 use crate::{Frame, Loop, Output, RenderError, Rgba, Style, View, write_atomic};
 
+/// The `id` of the background rectangle of every SVG written here.
+pub const BACKGROUND_ID: &str = "immerse-background";
+
+/// The `id` of the outline path (the curve) of every SVG written here;
+/// immerse reads this path when it reads such a drawing back.
+pub const OUTLINE_ID: &str = "immerse-outline";
+
 /// A number with at most two decimals and no trailing zeros.
 fn num(out: &mut String, v: f64) {
     let r = (v * 100.0).round() / 100.0;
@@ -102,7 +109,11 @@ fn header(out: &mut String, style: &Style) {
         "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" \
          width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">"
     );
-    out.push_str("<rect width=\"100%\" height=\"100%\"");
+    // Marked, so that immerse reading the drawing back skips it.
+    let _ = write!(
+        out,
+        "<rect id=\"{BACKGROUND_ID}\" width=\"100%\" height=\"100%\""
+    );
     color_attr(out, "fill", style.background);
     out.push_str("/>\n");
 }
@@ -211,7 +222,7 @@ pub fn svg_frame(
     if style.outline_width > 0.0 {
         let d = path_data(&frame.outline, &pts, true);
         if !d.is_empty() {
-            let _ = write!(out, "<path d=\"{d}\"");
+            let _ = write!(out, "<path id=\"{OUTLINE_ID}\" d=\"{d}\"");
             stroke_attrs(&mut out, style.outline, style.outline_width);
             out.push_str("/>\n");
         }
@@ -336,11 +347,11 @@ pub fn animated_svg(
     let (w, h) = (style.width, style.height);
     let _ = write!(
         out,
-        "<defs>\n<path id=\"shape\" d=\"{}\">\n<animate attributeName=\"d\" dur=\"{dur}s\" \
+        "<defs>\n<path id=\"{OUTLINE_ID}\" d=\"{}\">\n<animate attributeName=\"d\" dur=\"{dur}s\" \
          repeatCount=\"{repeat}\" fill=\"freeze\" calcMode=\"linear\" values=\"{}\"/>\n</path>\n\
          <mask id=\"even\" maskUnits=\"userSpaceOnUse\" x=\"0\" y=\"0\" width=\"{w}\" height=\"{h}\">\n\
-         <use xlink:href=\"#shape\" fill=\"white\" fill-rule=\"nonzero\"/>\n\
-         <use xlink:href=\"#shape\" fill=\"black\" fill-rule=\"evenodd\"/>\n</mask>\n</defs>\n",
+         <use xlink:href=\"#{OUTLINE_ID}\" fill=\"white\" fill-rule=\"nonzero\"/>\n\
+         <use xlink:href=\"#{OUTLINE_ID}\" fill=\"black\" fill-rule=\"evenodd\"/>\n</mask>\n</defs>\n",
         shapes[0],
         values.join(";")
     );
@@ -351,15 +362,15 @@ pub fn animated_svg(
     );
     let _ = writeln!(
         out,
-        "<use xlink:href=\"#shape\" {fill} fill-rule=\"nonzero\"/>"
+        "<use xlink:href=\"#{OUTLINE_ID}\" {fill} fill-rule=\"nonzero\"/>"
     );
     let _ = writeln!(
         out,
-        "<use xlink:href=\"#shape\" {fill} fill-rule=\"nonzero\" mask=\"url(#even)\"/>"
+        "<use xlink:href=\"#{OUTLINE_ID}\" {fill} fill-rule=\"nonzero\" mask=\"url(#even)\"/>"
     );
     onion_paths(&mut out, &onion(frames, style), &view, style);
     if style.outline_width > 0.0 {
-        out.push_str("<use xlink:href=\"#shape\"");
+        let _ = write!(out, "<use xlink:href=\"#{OUTLINE_ID}\"");
         stroke_attrs(&mut out, style.outline, style.outline_width);
         out.push_str("/>\n");
     }
@@ -381,9 +392,7 @@ pub fn write_animated_svg(
     looping: Loop,
     opts: &Output,
 ) -> Result<(), RenderError> {
-    if !opts.force && std::fs::symlink_metadata(path).is_ok() {
-        return Err(RenderError::FileExists { path: path.into() });
-    }
+    crate::check_output_file(path, opts.force)?;
     let svg = animated_svg(frames, style, fps, looping)?;
     write_atomic(path, svg.as_bytes(), opts.force)
 }

@@ -3,9 +3,9 @@
 use std::path::Path;
 
 use immerse_render::{
-    Easing, Frame, Loop, Output, RenderError, Rgba, Style, View, animated_svg, encode_png,
-    frame_times, prepare_output_dir, render, svg_frame, write_animated_svg, write_atomic,
-    write_gif, write_png_sequence, write_svg_sequence,
+    Easing, Frame, Loop, Output, RenderError, Rgba, Style, View, animated_svg, check_output_dir,
+    encode_png, frame_times, render, svg_frame, write_animated_svg, write_atomic, write_gif,
+    write_png_sequence, write_svg_sequence,
 };
 
 /// Two overlapping right triangles: `[0,4]²` corner and the same shifted by (1,1).
@@ -190,6 +190,15 @@ fn png_sequence_decodes_with_the_right_size() {
         assert_eq!((reader.info().width, reader.info().height), (64, 48));
     }
     assert_no_temp_files(&out);
+    // An ordinary folder's permissions, not a temporary folder's 0700.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let plain = dir.path().join("plain");
+        std::fs::create_dir(&plain).unwrap();
+        let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode(&out), mode(&plain));
+    }
 
     // The folder is not empty now: refused without force, fine with it.
     let err = write_png_sequence(&frames, &out, &style, &Output::DEFAULT, &|_| {}).unwrap_err();
@@ -439,10 +448,10 @@ fn write_atomic_refuses_then_replaces() {
     assert_eq!(std::fs::read(&path).unwrap(), b"first");
     write_atomic(&path, b"second", true).unwrap();
     assert_eq!(std::fs::read(&path).unwrap(), b"second");
-    // A missing folder is an i/o error naming it, with nothing left behind.
+    // A missing folder is an error naming it, with nothing left behind.
     let missing = dir.path().join("no/such/dir/x.png");
     let err = write_atomic(&missing, b"x", false).unwrap_err();
-    assert!(matches!(err, RenderError::Io { .. }), "{err}");
+    assert!(matches!(err, RenderError::NoFolder { .. }), "{err}");
     assert_no_temp_files(dir.path());
     let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
     assert_eq!(names.len(), 1);
@@ -460,12 +469,23 @@ fn write_atomic_refuses_then_replaces() {
 #[test]
 fn output_dir_rules() {
     let dir = tempfile::tempdir().unwrap();
-    let fresh = dir.path().join("a/b");
-    prepare_output_dir(&fresh, false).unwrap();
-    assert!(fresh.is_dir());
-    prepare_output_dir(&fresh, false).unwrap(); // empty is fine
+    let fresh = dir.path().join("a");
+    check_output_dir(&fresh, false).unwrap();
+    assert!(!fresh.exists(), "a check creates nothing");
+    // The parent must exist.
+    let deep = dir.path().join("no/such");
+    assert_eq!(
+        check_output_dir(&deep, false).unwrap_err().to_string(),
+        format!(
+            "cannot write {}: there is no folder {}; create it first",
+            deep.display(),
+            dir.path().join("no").display()
+        )
+    );
+    std::fs::create_dir(&fresh).unwrap();
+    check_output_dir(&fresh, false).unwrap(); // empty is fine
     std::fs::write(fresh.join("keep.txt"), "x").unwrap();
-    let err = prepare_output_dir(&fresh, false).unwrap_err();
+    let err = check_output_dir(&fresh, false).unwrap_err();
     assert_eq!(
         err.to_string(),
         format!(
@@ -473,13 +493,106 @@ fn output_dir_rules() {
             fresh.display()
         )
     );
-    prepare_output_dir(&fresh, true).unwrap();
+    check_output_dir(&fresh, true).unwrap();
     assert!(fresh.join("keep.txt").exists());
     let file = fresh.join("keep.txt");
     assert!(matches!(
-        prepare_output_dir(&file, true),
+        check_output_dir(&file, true),
         Err(RenderError::NotADir { .. })
     ));
+    assert_no_temp_files(dir.path());
+}
+
+/// Regression (issue #18, item 4): a shorter sequence written into a frame
+/// folder left the frames of an earlier, longer run behind.
+#[test]
+fn a_shorter_sequence_removes_stale_frames_but_nothing_else() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("frames");
+    let style = Style::DEFAULT.with_size(16, 16);
+    write_png_sequence(&squares(5), &out, &style, &Output::DEFAULT, &|_| {}).unwrap();
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    std::fs::write(out.join("frame_0009.svg"), "other format").unwrap();
+    let forced = Output::DEFAULT.with_force(true);
+    write_png_sequence(&squares(2), &out, &style, &forced, &|_| {}).unwrap();
+    let mut names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "frame_0000.png",
+            "frame_0001.png",
+            "frame_0009.svg",
+            "notes.txt"
+        ]
+    );
+    assert_no_temp_files(dir.path());
+}
+
+/// A failed sequence (here: a frame with a bad index) leaves no folder and
+/// no temporary folder behind.
+#[test]
+fn a_failed_sequence_leaves_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("frames");
+    let mut frames = squares(3);
+    frames[2].triangles.push([0, 1, 99]);
+    let err =
+        write_png_sequence(&frames, &out, &Style::DEFAULT, &Output::DEFAULT, &|_| {}).unwrap_err();
+    assert!(matches!(err, RenderError::InFrame { .. }), "{err}");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+/// Regression (issue #18, item 1): with force, a symbolic link was replaced
+/// by a regular file and a special file renamed over.
+#[cfg(unix)]
+#[test]
+fn links_are_followed_and_special_files_written_through() {
+    let dir = tempfile::tempdir().unwrap();
+    let real = dir.path().join("real.txt");
+    let link = dir.path().join("link.txt");
+    std::fs::write(&real, "old").unwrap();
+    std::os::unix::fs::symlink("real.txt", &link).unwrap();
+    assert!(matches!(
+        write_atomic(&link, b"new", false),
+        Err(RenderError::FileExists { .. })
+    ));
+    write_atomic(&link, b"new", true).unwrap();
+    assert!(
+        std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink()
+    );
+    assert_eq!(std::fs::read(&real).unwrap(), b"new");
+    // A dangling link: the file is created where it points.
+    let dangling = dir.path().join("dangling.txt");
+    std::os::unix::fs::symlink("target.txt", &dangling).unwrap();
+    write_atomic(&dangling, b"made", false).unwrap();
+    assert_eq!(
+        std::fs::read(dir.path().join("target.txt")).unwrap(),
+        b"made"
+    );
+    // /dev/null is a special file, written through (never written to here:
+    // a regression would replace the machine's /dev/null; the CLI test
+    // writes through a FIFO instead).
+    assert_eq!(
+        immerse_render::resolve_output(Path::new("/dev/null")).unwrap(),
+        immerse_render::Destination::Special("/dev/null".into())
+    );
+    assert_eq!(
+        immerse_render::resolve_output(Path::new("/dev/stdout")).unwrap(),
+        immerse_render::Destination::Stdout
+    );
+    // A folder is not a file.
+    assert!(matches!(
+        write_atomic(dir.path(), b"x", true),
+        Err(RenderError::IsADir { .. })
+    ));
+    assert_no_temp_files(dir.path());
 }
 
 #[test]
@@ -527,6 +640,19 @@ fn contact_sheet_places_each_frame_in_its_cell() {
             assert_eq!(a, b, "frame {i} at ({x}, {y})");
         }
     }
+    // Without a column count the grid is nearly square: 5 frames in 3 columns.
+    let auto = immerse_render::contact_sheet(&frames, &style, 0).unwrap();
+    assert_eq!((auto.width(), auto.height()), (300, 200));
+    assert_eq!(immerse_render::contact_sheet_columns(60, 0), 8);
+    assert_eq!(immerse_render::contact_sheet_columns(3, 10), 3);
+    // The size is known (and checked) before anything is rendered.
+    let big = Style::DEFAULT.with_size(600, 600);
+    assert_eq!(
+        immerse_render::contact_sheet_size(2000, &big, 0)
+            .unwrap_err()
+            .to_string(),
+        "a contact sheet of 2000 frames in 45 columns would be 27000x27000 pixels, over the limit of 67108864 pixels; use fewer frames or a smaller size"
+    );
     // The empty sixth cell stays transparent.
     assert_eq!(sheet.pixel(250, 150).unwrap().alpha(), 0);
     assert!(matches!(

@@ -103,6 +103,16 @@ pub enum CurveError {
         /// The file.
         path: String,
     },
+    /// The SVG has a closed shape, but its transforms put its coordinates
+    /// beyond what the SVG parser represents (finite 32-bit floats), so
+    /// the parser dropped it.
+    #[error(
+        "{path}: the shape's coordinates are not finite or too large after its transforms are applied; rescale the drawing"
+    )]
+    SvgOutOfRange {
+        /// The file.
+        path: String,
+    },
     /// A coordinate is NaN or infinite.
     #[error("{path}: point {index} ({place}) has a non-finite coordinate; give finite numbers")]
     NonFinite {

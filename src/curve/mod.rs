@@ -118,6 +118,8 @@ impl Curve {
                 limit: format!("{MAX_FILE_BYTES} bytes"),
             });
         }
+        // A UTF-8 byte order mark (as some editors save) is not data.
+        let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
         let raw = match format {
             Format::Json => json::parse(bytes, label)?,
             Format::Text => text::parse(bytes, label)?,

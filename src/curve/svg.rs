@@ -2,7 +2,10 @@
 //! `polygon` and `path` elements into paths and resolves transforms).
 //!
 //! The curve is the first closed subpath in document order: a subpath that
-//! ends with `Z`, or whose last point equals its first. Its control points
+//! ends with `Z`, or whose last point equals its first. A drawing written by
+//! immerse (`immerse-render`) marks its outline path
+//! `id="immerse-outline"`, which is then read first, and its background
+//! rectangle `id="immerse-background"`, which is never read. Its control points
 //! are mapped by the element's absolute transform, Béziers are flattened
 //! to [`SVG_FLATTEN_TOLERANCE`] times the diagonal of the subpath's control
 //! polygon bounds, and y is negated (SVG is y down, immerse is y up).
@@ -28,6 +31,15 @@ const MAX_SEGMENTS_PER_CURVE: usize = 256;
 /// drawing comes near it.
 pub const MAX_SVG_PATH_NUMBER: f64 = 1e12;
 
+/// The `id` immerse-render gives the outline path (the curve) of the SVG it
+/// writes (`immerse_render::OUTLINE_ID`): read in preference to any other
+/// shape.
+const OUTLINE_ID: &str = "immerse-outline";
+
+/// The `id` immerse-render gives the background rectangle of the SVG it
+/// writes (`immerse_render::BACKGROUND_ID`): never read as the curve.
+const BACKGROUND_ID: &str = "immerse-background";
+
 #[derive(Clone, Copy)]
 enum Seg {
     Line(Point),
@@ -43,8 +55,16 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
             message: one_line(&e.to_string()),
         })?;
     let mut found = None;
-    find_closed(tree.root(), &mut found);
+    find_closed(tree.root(), Some(OUTLINE_ID), &mut found);
+    if found.is_none() {
+        find_closed(tree.root(), None, &mut found);
+    }
     let Some((start, segs)) = found else {
+        if transforms_hide_a_shape(bytes) {
+            return Err(CurveError::SvgOutOfRange {
+                path: label.to_string(),
+            });
+        }
         return Err(CurveError::NoClosedShape {
             path: label.to_string(),
         });
@@ -149,6 +169,49 @@ fn screen(bytes: &[u8], label: &str) -> Result<(), CurveError> {
     Ok(())
 }
 
+/// True when the SVG parser finds a closed shape in the drawing once every
+/// `transform` attribute is emptied: the parser drops shapes whose
+/// transformed coordinates overflow its 32-bit floats, so the transforms,
+/// not the shapes, are the problem. Only called when no shape was found.
+fn transforms_hide_a_shape(bytes: &[u8]) -> bool {
+    let Ok(text) = std::str::from_utf8(bytes) else {
+        return false;
+    };
+    let options = roxmltree::ParsingOptions {
+        allow_dtd: true,
+        ..roxmltree::ParsingOptions::default()
+    };
+    let Ok(doc) = roxmltree::Document::parse_with_options(text, options) else {
+        return false;
+    };
+    let mut values: Vec<std::ops::Range<usize>> = doc
+        .descendants()
+        .flat_map(|n| n.attributes())
+        .filter(|a| a.name() == "transform")
+        .map(|a| a.range_value())
+        .collect();
+    if values.is_empty() {
+        return false;
+    }
+    values.sort_by_key(|r| r.start);
+    let mut plain = String::with_capacity(text.len());
+    let mut at = 0;
+    for r in values {
+        if r.start < at || r.end > text.len() {
+            return false;
+        }
+        plain.push_str(&text[at..r.start]);
+        at = r.end;
+    }
+    plain.push_str(&text[at..]);
+    let Ok(tree) = usvg::Tree::from_data(plain.as_bytes(), &usvg::Options::default()) else {
+        return false;
+    };
+    let mut found = None;
+    find_closed(tree.root(), None, &mut found);
+    found.is_some()
+}
+
 /// The largest magnitude among the numbers in SVG path data (NaN-free;
 /// `None` when there are none). Reads a number as greedily as SVG's
 /// grammar allows, so it never under-reads: flags written without
@@ -214,14 +277,18 @@ fn segments_for(m: f64, tol: f64) -> usize {
     }
 }
 
-fn find_closed(group: &usvg::Group, found: &mut Option<(Point, Vec<Seg>)>) {
+/// The first closed subpath in document order of a path whose id is `only`
+/// (any path but the background when `None`).
+fn find_closed(group: &usvg::Group, only: Option<&str>, found: &mut Option<(Point, Vec<Seg>)>) {
     for node in group.children() {
         if found.is_some() {
             return;
         }
         match node {
-            usvg::Node::Group(g) => find_closed(g, found),
-            usvg::Node::Path(path) => {
+            usvg::Node::Group(g) => find_closed(g, only, found),
+            usvg::Node::Path(path)
+                if only.map_or(path.id() != BACKGROUND_ID, |id| path.id() == id) =>
+            {
                 let ts = path.abs_transform();
                 let map = |p: usvg::tiny_skia_path::Point| {
                     let (x, y) = (f64::from(p.x), f64::from(p.y));

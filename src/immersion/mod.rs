@@ -84,8 +84,15 @@ pub enum NotSelfOverlapping {
     /// vertex, so its turning number is undefined.
     #[error("the curve reverses direction at point {0} (a cusp), so it has no turning number")]
     Cusp(usize),
+    /// Fewer than 3 points, or all points on one line: the polygon encloses
+    /// no area, so it bounds no disk (and has no turning number). A
+    /// [`crate::Curve`] is never degenerate.
+    #[error(
+        "the points lie on one line (fewer than 3 points, or zero area), so they bound no disk; give at least 3 points that enclose a region"
+    )]
+    Degenerate,
     /// The turning number is +1 but no triangulation by valid triangles
-    /// exists; also returned for fewer than 3 points.
+    /// exists.
     #[error("no triangulation of the disk by valid triangles exists")]
     NoValidTriangulation,
     /// A coordinate of this point is NaN, infinite, or of a magnitude
@@ -116,7 +123,9 @@ impl NotSelfOverlapping {
     pub fn is_answer(&self) -> bool {
         !matches!(
             self,
-            NotSelfOverlapping::OutOfRange(_) | NotSelfOverlapping::TooManyPoints { .. }
+            NotSelfOverlapping::OutOfRange(_)
+                | NotSelfOverlapping::TooManyPoints { .. }
+                | NotSelfOverlapping::Degenerate
         )
     }
 }
@@ -130,7 +139,7 @@ pub const MAX_DP_POINTS: usize = 20_000;
 /// exactly +1.
 pub(crate) fn precheck(points: &[Point]) -> Result<(), NotSelfOverlapping> {
     if points.len() < 3 {
-        return Err(NotSelfOverlapping::NoValidTriangulation);
+        return Err(NotSelfOverlapping::Degenerate);
     }
     if points.len() > MAX_DP_POINTS {
         return Err(NotSelfOverlapping::TooManyPoints {
@@ -144,6 +153,18 @@ pub(crate) fn precheck(points: &[Point]) -> Result<(), NotSelfOverlapping> {
         .position(|p| !(in_range(p.x) && in_range(p.y)))
     {
         return Err(NotSelfOverlapping::OutOfRange(i));
+    }
+    // All on one line (a polygon of two points, or of inserted points on a
+    // segment): no area, and not a cusp of a real curve.
+    let a = points[0];
+    let flat = match points.iter().find(|&&p| p != a) {
+        None => true,
+        Some(&b) => points
+            .iter()
+            .all(|&p| crate::geom::orient(a, b, p) == crate::geom::Orientation::Collinear),
+    };
+    if flat {
+        return Err(NotSelfOverlapping::Degenerate);
     }
     match turning_number(points) {
         Turning::Number(1) => Ok(()),
@@ -162,7 +183,8 @@ pub(crate) fn precheck(points: &[Point]) -> Result<(), NotSelfOverlapping> {
 ///
 /// # Errors
 ///
-/// [`NotSelfOverlapping`]: fewer than 3 points or no valid triangulation
+/// [`NotSelfOverlapping`]: fewer than 3 points or all on one line
+/// ([`NotSelfOverlapping::Degenerate`]), no valid triangulation
 /// ([`NotSelfOverlapping::NoValidTriangulation`]), a turning number other
 /// than 1, a cusp, or a coordinate outside the exact range
 /// ([`NotSelfOverlapping::OutOfRange`]).

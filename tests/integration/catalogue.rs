@@ -191,7 +191,7 @@ fn usage_errors() {
         (
             &["triangulate", tri, "--size", "0x5"],
             format!(
-                "error: invalid value '0x5' for '--size <WxH>': '0' in '0x5' is not a size from 1 to 16384{more}"
+                "error: invalid value '0x5' for '--size <WxH>': '0' in '0x5' is not a size from 1 to 8192{more}"
             ),
         ),
         (
@@ -203,7 +203,7 @@ fn usage_errors() {
         (
             &["morph", tri, tri, "--size", "99999x1"],
             format!(
-                "error: invalid value '99999x1' for '--size <WxH>': '99999' in '99999x1' is not a size from 1 to 16384{more}"
+                "error: invalid value '99999x1' for '--size <WxH>': '99999' in '99999x1' is not a size from 1 to 8192{more}"
             ),
         ),
     ];
@@ -283,7 +283,7 @@ fn existing_outputs_need_force() {
         dp,
         &["morph", tri, tri, "--frames", "2", "--json", "morph.json"],
         2,
-        "immerse: morph.json exists; pass --force to replace it",
+        "immerse: output file morph.json already exists; pass --force to overwrite it",
     );
     assert_stderr(
         dp,

@@ -233,7 +233,7 @@ fn morph_writes_verified_json_frames() {
     let again = immerse_in(dir.path(), &args);
     assert_eq!(again.status.code(), Some(2));
     assert!(
-        stderr(&again).contains("m.json exists; pass --force"),
+        stderr(&again).contains("m.json already exists; pass --force"),
         "{}",
         stderr(&again)
     );

@@ -11,6 +11,7 @@ mod curves;
 mod immersion;
 mod mesh;
 mod morph;
+mod outputs;
 mod pairs;
 mod properties;
 mod util;

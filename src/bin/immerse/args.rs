@@ -34,7 +34,7 @@ pub(crate) enum Command {
     /// bounds an immersed disk; the answer is exact. Exit code 0 when it is,
     /// 1 when it is not (with the reason).
     #[command(
-        after_help = "Examples:\n  immerse check curves/letter-S-n62.json\n  immerse check ribbon.svg --json"
+        after_help = "Examples:\n  immerse check curves/letter-S-n62.json\n  immerse check ribbon.svg --json\n  immerse check ribbon.svg --json=report.json"
     )]
     Check(CheckArgs),
     /// Triangulate the immersed disk that a curve bounds.
@@ -125,22 +125,32 @@ pub(crate) struct MeshMorphArgs {
     /// Only report whether the linear morph is valid (exact test on every star).
     #[arg(long)]
     pub(crate) check_linear: bool,
-    /// Write the frames as JSON to this file ("-" for stdout).
-    #[arg(long, value_name = "FILE")]
+    /// Write the frames as JSON to FILE; bare --json, "-" or /dev/stdout
+    /// print it on stdout.
+    #[arg(long, value_name = "FILE", num_args = 0..=1, default_missing_value = "-")]
     pub(crate) json: Option<PathBuf>,
-    /// Write images: a folder for png/svg sequences, a file for gif, animated-svg or a sheet.
+    /// Write images (see `immerse morph --help`): a folder (no extension,
+    /// or ending in /) of PNG or SVG frames, or a .gif, .svg (animated) or
+    /// .png (contact sheet) file; "-" is stdout with --format.
     #[arg(short, long, value_name = "PATH")]
     pub(crate) output: Option<PathBuf>,
-    /// Image format; by default from the -o extension (.gif, .svg, .png sheet), png frames for a folder.
+    /// Image format; by default from the -o extension (.gif, .svg animated,
+    /// .png sheet), PNG frames for a folder.
     #[arg(long, value_enum)]
     pub(crate) format: Option<FormatArg>,
-    /// Image size in pixels, WIDTHxHEIGHT.
+    /// Columns of a contact sheet; by default a nearly square grid.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=10_000))]
+    pub(crate) columns: Option<u32>,
+    /// Image size in pixels, WIDTHxHEIGHT (each at most 8192).
     #[arg(long, value_name = "WxH", default_value = "600x600", value_parser = parse_size)]
     pub(crate) size: (u32, u32),
-    /// Frames per second of a GIF or animated SVG.
+    /// Frames per second of a GIF (at most 50: GIF delays are whole
+    /// hundredths of a second) or animated SVG.
     #[arg(long, default_value_t = 30.0)]
     pub(crate) fps: f64,
-    /// Replace existing output files.
+    /// Replace existing output files; write into a non-empty folder,
+    /// replacing frames and removing frame_N files of an earlier, longer
+    /// run.
     #[arg(long)]
     pub(crate) force: bool,
     /// No progress bars or notices on stderr.
@@ -157,10 +167,11 @@ pub(crate) struct DemoArgs {
     /// Number of frames.
     #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(2..=2000))]
     pub(crate) frames: u32,
-    /// Image size in pixels, WIDTHxHEIGHT.
+    /// Image size in pixels, WIDTHxHEIGHT (each at most 8192).
     #[arg(long, value_name = "WxH", default_value = "480x480", value_parser = parse_size)]
     pub(crate) size: (u32, u32),
-    /// Write into the folder even if it holds other files (same-named files are replaced).
+    /// Write into the folder even if it holds other files (same-named files
+    /// are replaced, frame_N.png files of a longer run removed).
     #[arg(long)]
     pub(crate) force: bool,
     /// No progress bars on stderr.
@@ -173,13 +184,17 @@ pub(crate) struct DemoArgs {
 pub(crate) struct CheckArgs {
     /// The curve file (.json, .txt, .csv, .xy or .svg).
     pub(crate) curve: PathBuf,
-    /// Print one JSON object on stdout instead of text.
+    /// Write one JSON object instead of text: bare --json prints it on
+    /// stdout, --json=FILE writes FILE ("-" or /dev/stdout: stdout).
     ///
     /// Fields: points (count after cleaning), turning_number (of the curve
     /// as given), simple, reversed, self_overlapping, reason (null when
     /// self-overlapping).
+    #[arg(long, value_name = "FILE", num_args = 0..=1, require_equals = true, default_missing_value = "-")]
+    pub(crate) json: Option<PathBuf>,
+    /// Replace an existing --json file.
     #[arg(long)]
-    pub(crate) json: bool,
+    pub(crate) force: bool,
 }
 
 /// Triangulation quality (see `immerse triangulate --help`).
@@ -198,23 +213,25 @@ pub(crate) enum QualityArg {
 pub(crate) struct TriangulateArgs {
     /// The curve file (.json, .txt, .csv, .xy or .svg).
     pub(crate) curve: PathBuf,
-    /// Print the triangulation as JSON on stdout.
+    /// Write the triangulation as JSON: bare --json prints it on stdout,
+    /// --json=FILE writes FILE ("-" or /dev/stdout: stdout).
     ///
     /// Fields: points (oriented order, y up), triangles (counter-clockwise
     /// index triples), reversed, spine (triangle indices), pivot_vertex,
     /// root_triangle.
-    #[arg(long)]
-    pub(crate) json: bool,
+    #[arg(long, value_name = "FILE", num_args = 0..=1, require_equals = true, default_missing_value = "-")]
+    pub(crate) json: Option<PathBuf>,
     /// Which triangulation to compute.
     #[arg(long, value_enum, default_value_t = QualityArg::Delaunay)]
     pub(crate) quality: QualityArg,
-    /// Draw the triangulation to a .png or .svg file.
+    /// Draw the triangulation to a .png or .svg file ("-" is refused: name
+    /// a file).
     #[arg(short, long, value_name = "FILE")]
     pub(crate) output: Option<PathBuf>,
-    /// Image size in pixels, WIDTHxHEIGHT.
+    /// Image size in pixels, WIDTHxHEIGHT (each at most 8192).
     #[arg(long, value_name = "WxH", default_value = "800x800", value_parser = parse_size)]
     pub(crate) size: (u32, u32),
-    /// Replace an existing output file.
+    /// Replace existing output files (-o, --json=FILE).
     #[arg(long)]
     pub(crate) force: bool,
 }
@@ -321,11 +338,14 @@ pub(crate) struct MorphArgs {
     /// angle, ballooning, area share, valid frames) to stdout.
     #[arg(long)]
     pub(crate) metrics: bool,
-    /// Write the frames as JSON to this file ("-" for stdout).
-    #[arg(long, value_name = "FILE")]
+    /// Write the frames as JSON to FILE; bare --json, "-" or /dev/stdout
+    /// print it on stdout.
+    #[arg(long, value_name = "FILE", num_args = 0..=1, default_missing_value = "-")]
     pub(crate) json: Option<PathBuf>,
-    /// Write images: a folder for PNG or SVG frame sequences, or a .gif,
-    /// .svg (animated) or .png (contact sheet) file.
+    /// Write images: a folder (a path without an extension, or ending in
+    /// /) of PNG or SVG frames, or a .gif, .svg (animated) or .png
+    /// (contact sheet) file; any other extension is refused. "-" writes a
+    /// single-file format to stdout (give --format).
     #[arg(short, long, value_name = "PATH")]
     pub(crate) output: Option<PathBuf>,
     /// Image format; by default taken from the -o extension (.gif, .svg
@@ -333,10 +353,14 @@ pub(crate) struct MorphArgs {
     /// folder.
     #[arg(long, value_enum)]
     pub(crate) format: Option<FormatArg>,
-    /// Image size in pixels, WIDTHxHEIGHT.
+    /// Columns of a contact sheet; by default a nearly square grid.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=10_000))]
+    pub(crate) columns: Option<u32>,
+    /// Image size in pixels, WIDTHxHEIGHT (each at most 8192).
     #[arg(long, value_name = "WxH", default_value = "600x600", value_parser = parse_size)]
     pub(crate) size: (u32, u32),
-    /// Frames per second of a GIF or animated SVG.
+    /// Frames per second of a GIF (at most 50: GIF delays are whole
+    /// hundredths of a second) or animated SVG.
     #[arg(long, default_value_t = 30.0)]
     pub(crate) fps: f64,
     /// Play the animation forwards then backwards, repeating.
@@ -351,7 +375,9 @@ pub(crate) struct MorphArgs {
     /// Draw the source and target faintly behind every frame.
     #[arg(long)]
     pub(crate) onion: bool,
-    /// Replace existing output files (and write into a non-empty folder).
+    /// Replace existing output files; write into a non-empty folder,
+    /// replacing frames and removing frame_N files of an earlier, longer
+    /// run.
     #[arg(long)]
     pub(crate) force: bool,
     /// No progress bars or notices on stderr.
@@ -371,8 +397,13 @@ pub(crate) fn parse_size(s: &str) -> Result<(u32, u32), String> {
         v.trim()
             .parse::<u32>()
             .ok()
-            .filter(|&n| (1..=16384).contains(&n))
-            .ok_or_else(|| format!("'{v}' in '{s}' is not a size from 1 to 16384"))
+            .filter(|&n| (1..=immerse_render::Style::MAX_SIDE).contains(&n))
+            .ok_or_else(|| {
+                format!(
+                    "'{v}' in '{s}' is not a size from 1 to {}",
+                    immerse_render::Style::MAX_SIDE
+                )
+            })
     };
     Ok((num(w)?, num(h)?))
 }
@@ -389,12 +420,40 @@ mod tests {
 
     #[test]
     fn check_parses_json_flag() {
-        let cli = Cli::try_parse_from(["immerse", "check", "a.json", "--json"]).unwrap();
-        let Command::Check(args) = cli.command else {
-            panic!("not check")
+        let json = |argv: &[&str]| {
+            let cli = Cli::try_parse_from(argv).unwrap();
+            let Command::Check(args) = cli.command else {
+                panic!("not check")
+            };
+            assert_eq!(args.curve, PathBuf::from("a.json"));
+            args.json
         };
-        assert!(args.json);
-        assert_eq!(args.curve, PathBuf::from("a.json"));
+        assert_eq!(
+            json(&["immerse", "check", "a.json", "--json"]),
+            Some("-".into())
+        );
+        // The old form: a bare flag before the curve.
+        assert_eq!(
+            json(&["immerse", "check", "--json", "a.json"]),
+            Some("-".into())
+        );
+        assert_eq!(
+            json(&["immerse", "check", "a.json", "--json=r.json"]),
+            Some("r.json".into())
+        );
+        assert_eq!(json(&["immerse", "check", "a.json"]), None);
+        // morph and mesh-morph also take the value after a space (the old form).
+        let cli = Cli::try_parse_from(["immerse", "morph", "a", "b", "--json", "m.json"]).unwrap();
+        let Command::Morph(m) = cli.command else {
+            panic!("not morph")
+        };
+        assert_eq!(m.json, Some("m.json".into()));
+        let cli = Cli::try_parse_from(["immerse", "morph", "a", "b", "--json", "-q"]).unwrap();
+        let Command::Morph(m) = cli.command else {
+            panic!("not morph")
+        };
+        assert_eq!(m.json, Some("-".into()));
+        assert!(m.quiet);
     }
 
     #[test]

@@ -19,7 +19,24 @@ pub(crate) enum Outcome {
     Negative,
 }
 
+/// Exit code after an interrupt (Ctrl-C, SIGTERM, SIGHUP): 128 + SIGINT,
+/// as shells report it.
+const INTERRUPTED: i32 = 130;
+
 fn main() -> ExitCode {
+    // On Ctrl-C, SIGTERM or SIGHUP remove what is half-written (temporary
+    // files and folders of the outputs being written) and exit 130: an
+    // interrupted run leaves no partial output. `ctrlc` runs the handler on
+    // a thread of its own, where it may take locks and touch files.
+    let _ = ctrlc::set_handler(|| {
+        let removed = immerse_render::remove_partial_outputs();
+        output::note(&if removed > 0 {
+            format!("interrupted; removed {removed} unfinished output(s)")
+        } else {
+            "interrupted".to_string()
+        });
+        std::process::exit(INTERRUPTED);
+    });
     let cli = args::Cli::parse();
     match commands::run(cli) {
         Ok(Outcome::Success) => ExitCode::SUCCESS,

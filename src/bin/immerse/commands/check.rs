@@ -27,6 +27,9 @@ struct CheckReport {
 }
 
 pub(crate) fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
+    if let Some(json) = &args.json {
+        super::check_output_file(json, args.force)?;
+    }
     let curve = Curve::from_path(&args.curve)?;
     let crossing = polygon::first_self_intersection(&curve.points);
     let verdict = immersion::triangulate(&curve.points);
@@ -48,9 +51,11 @@ pub(crate) fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
     } else {
         Outcome::Negative
     };
-    if args.json {
-        output::print_json(&report)?;
-        return Ok(outcome);
+    if let Some(json) = &args.json {
+        super::write_json(json, &report, true, args.force)?;
+        if immerse_render::is_stdout(json) {
+            return Ok(outcome);
+        }
     }
     let mut lines = vec![format!(
         "{}: {}",

@@ -24,6 +24,15 @@ const MARKER: &str = ".immerse-demo";
 pub(crate) fn run(args: &DemoArgs) -> anyhow::Result<Outcome> {
     let dir = &args.output;
     check_folder(dir, args.force)?;
+    // The folder is ours (or --force), so its own files may be replaced;
+    // a folder made now is removed again if the run fails or is
+    // interrupted.
+    render::check_output_dir(dir, true)?;
+    let made = if dir.exists() {
+        None
+    } else {
+        Some(render::NewOutputDir::create(dir)?)
+    };
     let src = Curve::from_bytes(SOURCE.as_bytes(), Format::Svg, "ribbon-curl.svg", "ribbon")?;
     let dst = Curve::from_bytes(TARGET.as_bytes(), Format::Svg, "tail-loop.svg", "tail")?;
     let times = render::frame_times(args.frames as usize, &render::Easing::EaseInOut);
@@ -34,17 +43,18 @@ pub(crate) fn run(args: &DemoArgs) -> anyhow::Result<Outcome> {
         &CurveMorphOptions::DEFAULT,
     )
     .context("the embedded demo curves did not morph; this is a bug in immerse")?;
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     render::write_atomic(&dir.join(MARKER), b"written by immerse demo\n", true)?;
     let frames = super::render_frames(&morph.frames);
     let style = render::Style::DEFAULT
         .with_size(args.size.0, args.size.1)
         .with_onion_skin(true);
-    // The folder is ours (checked above), so replacing our own files is fine.
+    // The folder is ours (checked above), so replacing our own files is
+    // fine; frames of an earlier, longer run are removed.
+    let image = |format| super::ImageOutput { format, columns: 0 };
     write_frames(
         &frames,
         dir,
-        FormatArg::Png,
+        image(FormatArg::Png),
         &style,
         24.0,
         render::Loop::PingPong,
@@ -55,13 +65,16 @@ pub(crate) fn run(args: &DemoArgs) -> anyhow::Result<Outcome> {
     write_frames(
         &frames,
         &gif,
-        FormatArg::Gif,
+        image(FormatArg::Gif),
         &style,
         24.0,
         render::Loop::PingPong,
         true,
         args.quiet,
     )?;
+    if let Some(made) = made {
+        made.keep();
+    }
     let m = metrics(&morph.frames);
     output::print(&format!(
         "morphed a curled ribbon ({} points) into a looping tail ({} points): {} frames, all {} verified immersions, {} edge flips, minimum angle {:.2}°\nwrote {} (frame_0000.png … and demo.gif)",
@@ -76,17 +89,20 @@ pub(crate) fn run(args: &DemoArgs) -> anyhow::Result<Outcome> {
     Ok(Outcome::Success)
 }
 
-/// Refuses a folder that holds anything the demo did not write, unless
-/// `force` is given.
+/// Refuses a path that is not a folder, and a folder that holds anything
+/// the demo did not write unless `force` is given.
 fn check_folder(dir: &Path, force: bool) -> anyhow::Result<()> {
-    if !dir.exists() || force {
+    if !dir.exists() {
         return Ok(());
     }
     if !dir.is_dir() {
         anyhow::bail!(
-            "{} exists and is not a folder; choose another -o or pass --force",
+            "{} exists and is not a folder; choose another -o",
             dir.display()
         );
+    }
+    if force {
+        return Ok(());
     }
     let ours = |name: &str| {
         name == MARKER

@@ -34,8 +34,45 @@ struct MorphJson<'a> {
     frames: Vec<FrameJson<'a>>,
 }
 
+/// The image style of `immerse mesh-morph`.
+fn style(args: &MeshMorphArgs) -> render::Style {
+    render::Style::DEFAULT
+        .with_size(args.size.0, args.size.1)
+        .with_wireframe(true)
+}
+
 pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
-    super::refuse_existing(args.json.as_deref(), args.force)?;
+    if !(args.fps.is_finite() && args.fps > 0.0 && args.fps <= 1000.0) {
+        anyhow::bail!(
+            "--fps {} is not a rate above 0 and at most 1000 frames per second",
+            args.fps
+        );
+    }
+    // Every output is checked before any work.
+    let images = match &args.output {
+        Some(out) if !args.check_linear => Some(super::check_images(
+            args.format,
+            out,
+            args.force,
+            args.frames as usize,
+            &style(args),
+            args.fps,
+            args.columns,
+        )?),
+        _ => None,
+    };
+    if let Some(json) = &args.json
+        && !args.check_linear
+    {
+        super::check_output_file(json, args.force)?;
+    }
+    super::one_stdout(&[
+        (
+            "--json",
+            args.json.as_deref().is_some_and(render::is_stdout),
+        ),
+        ("-o", args.output.as_deref().is_some_and(render::is_stdout)),
+    ])?;
     let a = Tiling::from_path(&args.source)?;
     let b = Tiling::from_path(&args.target)?;
     if args.check_linear {
@@ -102,10 +139,9 @@ pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
                 })
                 .collect(),
         };
-        let text = serde_json::to_string(&doc)?;
-        super::write_text(json, &text, args.force)?;
+        super::write_json(json, &doc, false, args.force)?;
     }
-    if let Some(out) = &args.output {
+    if let (Some(out), Some(images)) = (&args.output, images) {
         let plain: Vec<render::Frame> = frames
             .iter()
             .map(|f| render::Frame {
@@ -115,15 +151,11 @@ pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
                 ..render::Frame::default()
             })
             .collect();
-        let format = super::image_format(args.format, out);
-        let style = render::Style::DEFAULT
-            .with_size(args.size.0, args.size.1)
-            .with_wireframe(true);
         write_frames(
             &plain,
             out,
-            format,
-            &style,
+            images,
+            &style(args),
             args.fps,
             render::Loop::Loop,
             args.force,

@@ -8,10 +8,12 @@ mod morph;
 mod triangulate;
 
 use crate::Outcome;
-use crate::args::{Cli, Command, QualityArg};
+use crate::args::{Cli, Command, FormatArg, QualityArg};
+use anyhow::Context;
 use immerse::Quality;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
+use std::path::Path;
 
 /// Runs the parsed command line.
 pub(crate) fn run(cli: Cli) -> anyhow::Result<Outcome> {
@@ -67,27 +69,182 @@ pub(crate) fn spinner(message: &str, quiet: bool) -> ProgressBar {
     bar
 }
 
-/// Refuses, before any work, an output file that exists unless `force`
-/// ("-" is stdout and never refused).
-pub(crate) fn refuse_existing(path: Option<&std::path::Path>, force: bool) -> anyhow::Result<()> {
-    if let Some(p) = path
-        && p.as_os_str() != "-"
-        && !force
-        && p.exists()
-    {
-        anyhow::bail!("{} exists; pass --force to replace it", p.display());
+/// Checks, before any work, that an output file (`--json`, `-o`) can be
+/// written: "-" and /dev/stdout are stdout and special files are written
+/// through; an existing file needs `force`, and its folder must exist and
+/// be writable.
+pub(crate) fn check_output_file(path: &Path, force: bool) -> anyhow::Result<()> {
+    immerse_render::check_output_file(path, force)?;
+    Ok(())
+}
+
+/// Refuses two outputs (`what`) that would both go to stdout.
+pub(crate) fn one_stdout(outputs: &[(&str, bool)]) -> anyhow::Result<()> {
+    let on_stdout: Vec<&str> = outputs
+        .iter()
+        .filter(|(_, s)| *s)
+        .map(|(w, _)| *w)
+        .collect();
+    match on_stdout[..] {
+        [a, b] => anyhow::bail!(
+            "{a} and {b} would both print to standard output; send one of them to a file"
+        ),
+        [ref first @ .., last] if on_stdout.len() > 2 => anyhow::bail!(
+            "{} and {last} would all print to standard output; send all but one to a file",
+            first.join(", ")
+        ),
+        _ => {}
     }
     Ok(())
 }
 
-/// Writes `text` to `path` atomically, or to stdout when `path` is "-".
-pub(crate) fn write_text(path: &std::path::Path, text: &str, force: bool) -> anyhow::Result<()> {
-    if path.as_os_str() == "-" {
-        crate::output::print(text)
-    } else {
-        immerse_render::write_atomic(path, text.as_bytes(), force)?;
-        Ok(())
+/// Writes `value` as JSON (pretty when `pretty`) and a newline to `path`
+/// ("-" and /dev/stdout: stdout), through the render crate's one output
+/// mechanism: never half-written, never overwriting without `force`.
+pub(crate) fn write_json<T: serde::Serialize>(
+    path: &Path,
+    value: &T,
+    pretty: bool,
+    force: bool,
+) -> anyhow::Result<()> {
+    let mut out = immerse_render::OutputFile::create(path, force)?;
+    let written = {
+        let mut w = std::io::BufWriter::with_capacity(1 << 16, &mut out);
+        let encoded = if pretty {
+            serde_json::to_writer_pretty(&mut w, value)
+        } else {
+            serde_json::to_writer(&mut w, value)
+        };
+        encoded
+            .map_err(std::io::Error::from)
+            .and_then(|()| w.write_all(b"\n"))
+            .and_then(|()| w.flush())
+    };
+    written.with_context(|| format!("cannot write {}", path.display()))?;
+    out.finish()?;
+    Ok(())
+}
+
+/// Where `-o` puts images, and in which format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct ImageOutput {
+    /// The format.
+    pub(crate) format: FormatArg,
+    /// Columns of a contact sheet (0: nearly square).
+    pub(crate) columns: usize,
+}
+
+impl FormatArg {
+    /// The file extension of a single-file format.
+    fn file_extension(self) -> Option<&'static str> {
+        match self {
+            FormatArg::Gif => Some("gif"),
+            FormatArg::AnimatedSvg => Some("svg"),
+            FormatArg::Sheet => Some("png"),
+            FormatArg::Png | FormatArg::Svg => None,
+        }
     }
+
+    fn name(self) -> &'static str {
+        match self {
+            FormatArg::Png => "png",
+            FormatArg::Gif => "gif",
+            FormatArg::Svg => "svg",
+            FormatArg::AnimatedSvg => "animated-svg",
+            FormatArg::Sheet => "sheet",
+        }
+    }
+}
+
+/// The image format for `-o out` (one rule for every command): a folder of
+/// frames only when the path has no extension or ends in `/` (PNG frames
+/// unless `--format svg`); a .gif, .svg (animated) or .png (contact sheet)
+/// file; stdout ("-", /dev/stdout) for a single-file `--format`; anything
+/// else is refused.
+pub(crate) fn image_format(asked: Option<FormatArg>, out: &Path) -> anyhow::Result<FormatArg> {
+    let shown = out.display();
+    let text = out.to_string_lossy();
+    let file_formats = "name a .gif, .svg (animated) or .png (contact sheet) file, or a folder (no extension, or ending in /) for PNG frames";
+    if immerse_render::is_stdout(out) {
+        return match asked {
+            Some(f) if f.file_extension().is_some() => Ok(f),
+            Some(f) => anyhow::bail!(
+                "-o {shown}: --format {} writes a folder of frames, not standard output; name a folder",
+                f.name()
+            ),
+            None => anyhow::bail!(
+                "-o {shown}: standard output takes one file; add --format gif, animated-svg or sheet"
+            ),
+        };
+    }
+    let folder = text.ends_with('/') || text.ends_with(std::path::MAIN_SEPARATOR);
+    let ext = if folder {
+        None
+    } else {
+        out.extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase())
+    };
+    match (ext.as_deref(), asked) {
+        (None, None) => Ok(FormatArg::Png),
+        (None, Some(f @ (FormatArg::Png | FormatArg::Svg))) => Ok(f),
+        (None, Some(f)) if folder => anyhow::bail!(
+            "-o {shown} names a folder, but --format {} writes one file; name a .{} file",
+            f.name(),
+            f.file_extension().unwrap_or("gif")
+        ),
+        // No extension and a single-file format asked for: that file.
+        (None, Some(f)) => Ok(f),
+        (Some(e), None) => match e {
+            "gif" => Ok(FormatArg::Gif),
+            "svg" => Ok(FormatArg::AnimatedSvg),
+            "png" => Ok(FormatArg::Sheet),
+            _ => anyhow::bail!("-o {shown}: unknown image type '.{e}'; {file_formats}"),
+        },
+        (Some(e), Some(f)) => match f.file_extension() {
+            Some(want) if want == e => Ok(f),
+            Some(want) => anyhow::bail!(
+                "-o {shown}: --format {} writes a .{want} file, not .{e}; name the file .{want}",
+                f.name()
+            ),
+            None => anyhow::bail!(
+                "-o {shown}: --format {} writes a folder of frames; name a folder without an extension (or ending in /)",
+                f.name()
+            ),
+        },
+    }
+}
+
+/// Checks, before any work, everything about an image output that can be
+/// known in advance: the format rule ([`image_format`]), that the file or
+/// folder can be written (`force`), the GIF frame rate, and the size of a
+/// contact sheet of `frames` frames.
+pub(crate) fn check_images(
+    asked: Option<FormatArg>,
+    out: &Path,
+    force: bool,
+    frames: usize,
+    style: &immerse_render::Style,
+    fps: f64,
+    columns: Option<u32>,
+) -> anyhow::Result<ImageOutput> {
+    let format = image_format(asked, out)?;
+    let columns = columns.map_or(0, |c| c as usize);
+    if columns != 0 && format != FormatArg::Sheet {
+        anyhow::bail!("--columns lays out a contact sheet; add --format sheet or name a .png file");
+    }
+    match format {
+        FormatArg::Png | FormatArg::Svg => immerse_render::check_output_dir(out, force)?,
+        FormatArg::Gif => {
+            immerse_render::check_gif_fps(fps).with_context(|| format!("--fps {fps}"))?;
+            check_output_file(out, force)?;
+        }
+        FormatArg::AnimatedSvg => check_output_file(out, force)?,
+        FormatArg::Sheet => {
+            immerse_render::contact_sheet_size(frames, style, columns)?;
+            check_output_file(out, force)?;
+        }
+    }
+    Ok(ImageOutput { format, columns })
 }
 
 /// The render crate's frames for a morph's frames (outline = all points).
@@ -100,23 +257,11 @@ pub(crate) fn render_frames(frames: &[immerse::frames::Frame]) -> Vec<immerse_re
         .collect()
 }
 
-/// The image format: the one asked for, else from `out`'s extension
-/// (.gif, .svg animated, .png contact sheet), else PNG frames in a folder.
-pub(crate) fn image_format(
-    asked: Option<crate::args::FormatArg>,
-    out: &std::path::Path,
-) -> crate::args::FormatArg {
-    use crate::args::FormatArg;
-    let ext = out
-        .extension()
+/// True when `path` is read as SVG (by its extension).
+pub(crate) fn is_svg(path: &Path) -> bool {
+    path.extension()
         .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    asked.unwrap_or(match ext.as_deref() {
-        Some("gif") => FormatArg::Gif,
-        Some("svg") => FormatArg::AnimatedSvg,
-        Some("png") => FormatArg::Sheet,
-        _ => FormatArg::Png,
-    })
+        .is_some_and(|e| e.eq_ignore_ascii_case("svg"))
 }
 
 /// Converts library points to the render crate's plain points.

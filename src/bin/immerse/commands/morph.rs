@@ -53,14 +53,40 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
             args.fps
         );
     }
-    // Refuse to overwrite before doing any work.
-    super::refuse_existing(args.json.as_deref(), args.force)?;
+    // Every output is checked before any work: nothing is computed for
+    // an output that would then be refused.
+    let images = match &args.output {
+        Some(out) => Some(super::check_images(
+            args.format,
+            out,
+            args.force,
+            args.frames as usize,
+            &style(args),
+            args.fps,
+            args.columns,
+        )?),
+        None => None,
+    };
+    if let Some(json) = &args.json {
+        super::check_output_file(json, args.force)?;
+    }
+    super::one_stdout(&[
+        (
+            "--json",
+            args.json.as_deref().is_some_and(render::is_stdout),
+        ),
+        ("-o", args.output.as_deref().is_some_and(render::is_stdout)),
+        ("--metrics", args.metrics),
+    ])?;
     let mut clock = Timings::new(args.timings);
     let src = Curve::from_path(&args.source)?;
     let dst = Curve::from_path(&args.target)?;
     if !args.quiet {
         for (c, path) in [(&src, &args.source), (&dst, &args.target)] {
-            if c.reversed {
+            // SVG shapes (rect, circle, ellipse) are drawn clockwise on
+            // screen, which is clockwise with y up too: the format's
+            // convention, not worth a notice.
+            if c.reversed && !super::is_svg(path) {
                 output::note(&format!(
                     "{} is drawn clockwise; reversed it to counter-clockwise (frames follow the reversed order)",
                     path.display()
@@ -124,12 +150,11 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         }
     }
     if let Some(json) = &args.json {
-        let text = serde_json::to_string(&morph)?;
-        super::write_text(json, &text, args.force)?;
+        super::write_json(json, &morph, false, args.force)?;
     }
     clock.lap("json");
-    if let Some(out) = &args.output {
-        write_images(args, out, &morph)?;
+    if let (Some(out), Some(images)) = (&args.output, images) {
+        write_images(args, out, images, &morph)?;
     }
     clock.lap("images");
     clock.report();
@@ -219,14 +244,22 @@ impl Timings {
     }
 }
 
-/// Renders the frames to `out` in the chosen format.
-pub(crate) fn write_images(args: &MorphArgs, out: &Path, morph: &Morph) -> anyhow::Result<()> {
-    let format = super::image_format(args.format, out);
-    let frames = super::render_frames(&morph.frames);
-    let style = render::Style::DEFAULT
+/// The image style of `immerse morph`.
+fn style(args: &MorphArgs) -> render::Style {
+    render::Style::DEFAULT
         .with_size(args.size.0, args.size.1)
         .with_wireframe(args.wireframe)
-        .with_onion_skin(args.onion);
+        .with_onion_skin(args.onion)
+}
+
+/// Renders the frames to `out` in the chosen format.
+fn write_images(
+    args: &MorphArgs,
+    out: &Path,
+    images: super::ImageOutput,
+    morph: &Morph,
+) -> anyhow::Result<()> {
+    let frames = super::render_frames(&morph.frames);
     let looping = if args.ping_pong {
         render::Loop::PingPong
     } else if args.once {
@@ -235,11 +268,18 @@ pub(crate) fn write_images(args: &MorphArgs, out: &Path, morph: &Morph) -> anyho
         render::Loop::Loop
     };
     write_frames(
-        &frames, out, format, &style, args.fps, looping, args.force, args.quiet,
+        &frames,
+        out,
+        images,
+        &style(args),
+        args.fps,
+        looping,
+        args.force,
+        args.quiet,
     )
 }
 
-/// Writes rendered frames in `format` to `out` with a progress bar.
+/// Writes rendered frames to `out` as `images` says, with a progress bar.
 #[allow(
     clippy::too_many_arguments,
     reason = "plain glue between CLI options and the renderer"
@@ -247,7 +287,7 @@ pub(crate) fn write_images(args: &MorphArgs, out: &Path, morph: &Morph) -> anyho
 pub(crate) fn write_frames(
     frames: &[render::Frame],
     out: &Path,
-    format: FormatArg,
+    images: super::ImageOutput,
     style: &render::Style,
     fps: f64,
     looping: render::Loop,
@@ -255,13 +295,13 @@ pub(crate) fn write_frames(
     quiet: bool,
 ) -> anyhow::Result<()> {
     let opts = render::Output::DEFAULT.with_force(force);
-    let total = match format {
+    let total = match images.format {
         FormatArg::Gif => looping.sequence(frames.len()).len(),
         _ => frames.len(),
     };
     let bar = progress_bar(total as u64, "render", quiet);
     let progress = |done: usize| bar.set_position(done as u64);
-    match format {
+    match images.format {
         FormatArg::Png => {
             render::write_png_sequence(frames, out, style, &opts, &progress)?;
         }
@@ -272,7 +312,9 @@ pub(crate) fn write_frames(
         FormatArg::AnimatedSvg => {
             render::write_animated_svg(frames, out, style, fps, looping, &opts)?;
         }
-        FormatArg::Sheet => render::write_contact_sheet(frames, out, style, 0, &opts)?,
+        FormatArg::Sheet => {
+            render::write_contact_sheet(frames, out, style, images.columns, &opts)?;
+        }
     }
     bar.finish_and_clear();
     Ok(())

@@ -29,9 +29,18 @@ struct TriangulationJson {
 }
 
 pub(crate) fn run(args: &TriangulateArgs) -> anyhow::Result<Outcome> {
+    // Every output is checked before any work.
+    if let Some(path) = &args.output {
+        image_type(path)?;
+        super::check_output_file(path, args.force)?;
+    }
+    if let Some(json) = &args.json {
+        super::check_output_file(json, args.force)?;
+    }
+    let json_on_stdout = args.json.as_deref().is_some_and(render::is_stdout);
     let curve = Curve::from_path(&args.curve)?;
     let quality = Quality::from(args.quality);
-    let bar = progress_bar(1000, "triangulate", args.json || curve.len() < 1500);
+    let bar = progress_bar(1000, "triangulate", json_on_stdout || curve.len() < 1500);
     let result = triangulate_with_progress(&curve.points, quality, &mut |f| {
         bar.set_position((f * 1000.0) as u64);
     });
@@ -56,16 +65,18 @@ pub(crate) fn run(args: &TriangulateArgs) -> anyhow::Result<Outcome> {
     if let Some(path) = &args.output {
         draw(args, path, &imm.points, &imm.triangles, &spine, root)?;
     }
-    if args.json {
-        output::print_json(&TriangulationJson {
+    if let Some(json) = &args.json {
+        let doc = TriangulationJson {
             points: plain_points(&imm.points),
             triangles: imm.triangles.clone(),
             reversed: curve.reversed,
             spine: spine.triangles.clone(),
             pivot_vertex: spine.pivot_vertex,
             root_triangle: root,
-        })?;
-    } else {
+        };
+        super::write_json(json, &doc, true, args.force)?;
+    }
+    if !json_on_stdout {
         output::print(&format!(
             "{}: {} points, {} triangles ({quality}), minimum angle {:.3}°, spine of {} triangles, pivot vertex {}, root triangle {root}",
             args.curve.display(),
@@ -97,18 +108,33 @@ fn draw(
         .with_spine(true)
         .with_markers(true);
     let view = render::View::fit(std::slice::from_ref(&frame), &style);
+    let bytes = match image_type(path)? {
+        ImageType::Png => render::encode_png(&render::render(&frame, &view, &style, &[])?)?,
+        ImageType::Svg => render::svg_frame(&frame, &view, &style, &[])?.into_bytes(),
+    };
+    render::write_atomic(path, &bytes, args.force)?;
+    Ok(())
+}
+
+/// The image types `triangulate -o` draws.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum ImageType {
+    Png,
+    Svg,
+}
+
+/// The image type of `path` by its extension, or a clear error.
+fn image_type(path: &std::path::Path) -> anyhow::Result<ImageType> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
-    let bytes = match ext.as_deref() {
-        Some("png") => render::encode_png(&render::render(&frame, &view, &style, &[])?)?,
-        Some("svg") => render::svg_frame(&frame, &view, &style, &[])?.into_bytes(),
+    match ext.as_deref() {
+        Some("png") => Ok(ImageType::Png),
+        Some("svg") => Ok(ImageType::Svg),
         _ => anyhow::bail!(
             "{}: unknown image type; name a .png or .svg file",
             path.display()
         ),
-    };
-    render::write_atomic(path, &bytes, args.force)?;
-    Ok(())
+    }
 }

@@ -28,6 +28,8 @@
 //!   `DIR/pairI-target.json` for `immerse morph`.
 //! - `--gallery DIR`: write 4 curves of each generator as JSON files (to
 //!   look at them with `immerse triangulate FILE -o FILE.png`).
+//! - `--csv FILE`: write one line per pair (index, generators, options,
+//!   n, milliseconds, failure category) for analysis.
 //! - `--replay FILE...`: run regression files.
 
 use std::collections::BTreeSet;
@@ -51,7 +53,21 @@ struct Args {
     one: Option<u64>,
     dump: Option<PathBuf>,
     gallery: Option<PathBuf>,
+    csv: Option<PathBuf>,
     replay: Vec<PathBuf>,
+}
+
+/// CPU seconds (user + system) this process has used so far, from
+/// /proc/self/stat (Linux; `None` elsewhere). Wall time on a shared
+/// machine says little; CPU time says what the run costs.
+fn cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // Fields after the command name (which is in parentheses).
+    let rest = &stat[stat.rfind(')')? + 2..];
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let ticks: f64 = f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?;
+    // USER_HZ is 100 on every Linux this runs on.
+    Some(ticks / 100.0)
 }
 
 fn parse_u64(s: &str) -> Result<u64, String> {
@@ -74,6 +90,7 @@ fn parse_args() -> Result<Args, String> {
         one: None,
         dump: None,
         gallery: None,
+        csv: None,
         replay: Vec::new(),
     };
     let mut it = std::env::args().skip(1);
@@ -89,6 +106,7 @@ fn parse_args() -> Result<Args, String> {
             "--pair" => a.one = Some(parse_u64(&value()?)?),
             "--dump" => a.dump = Some(PathBuf::from(value()?)),
             "--gallery" => a.gallery = Some(PathBuf::from(value()?)),
+            "--csv" => a.csv = Some(PathBuf::from(value()?)),
             "--shrink" => a.shrink = true,
             "--replay" => {
                 a.replay.extend(it.by_ref().map(PathBuf::from));
@@ -142,12 +160,12 @@ fn shrink_and_report(p: &Pair, f: &Failure, save: Option<&Path>) {
         small.options.frames,
         t.elapsed().as_secs_f64()
     );
-    let json = serde_json::to_string_pretty(&small.to_json(Some(&sf.message))).unwrap();
+    let json = small.to_file_text(Some(&sf.message));
     println!("SHRUNK {}: {}\n{json}", small.name(), sf.message);
     if let Some(dir) = save {
         std::fs::create_dir_all(dir).unwrap();
         let path = dir.join(file_name(&small, &sf));
-        std::fs::write(&path, json + "\n").unwrap();
+        std::fs::write(&path, json).unwrap();
         eprintln!("wrote {}", path.display());
     }
 }
@@ -251,9 +269,46 @@ fn main() {
         }
     });
     let secs = start.elapsed().as_secs_f64();
+    if let Some(path) = &args.csv {
+        let mut out = String::from(
+            "pair,source,target,n,quality,counts,intermediate,correspondence,frames,ms,failure\n",
+        );
+        for r in &summary.rows {
+            let g = |i: usize| r.generators[i].map_or("?", |g| g.as_str());
+            let o = &r.options;
+            out += &format!(
+                "{},{},{},{},{},{},{},{},{},{:.3},\"{}\"\n",
+                r.index,
+                g(0),
+                g(1),
+                r.n,
+                o.quality,
+                harness::counts_name(o.counts),
+                o.intermediate.as_str(),
+                o.correspondence.as_str(),
+                o.frames,
+                r.seconds * 1e3,
+                r.failed.as_deref().unwrap_or("").replace('"', "'")
+            );
+        }
+        std::fs::write(path, out).unwrap();
+    }
     print!("{}", summary.report(args.show));
     let t = summary.sorted_seconds();
     let pct = |q: f64| t[((t.len() - 1) as f64 * q).round() as usize] * 1e3;
+    let passing: Vec<f64> = summary
+        .rows
+        .iter()
+        .filter(|r| r.failed.is_none())
+        .map(|r| r.seconds)
+        .collect();
+    if !passing.is_empty() {
+        println!(
+            "per-pair time of passing pairs (ms, one core): mean {:.1} over {} pairs",
+            passing.iter().sum::<f64>() / passing.len() as f64 * 1e3,
+            passing.len()
+        );
+    }
     let slowest = summary
         .rows
         .iter()
@@ -267,6 +322,13 @@ fn main() {
         pct(0.99),
         pct(1.0)
     );
+    if let Some(cpu) = cpu_seconds() {
+        println!(
+            "CPU time: {cpu:.1} s ({:.1} ms per pair); on 2 idle cores about {:.0} s of wall time",
+            cpu / summary.total().max(1) as f64 * 1e3,
+            cpu / 2.0
+        );
+    }
     println!(
         "stress: seed {:#x}, pairs {}..{}: {} pairs, {} failed, {:.1} s, {:.1} pairs/s on {} threads",
         args.seed,
@@ -279,15 +341,18 @@ fn main() {
         rayon::current_num_threads()
     );
     if args.shrink {
+        // The first failure of each category, shrunk in parallel.
+        use rayon::prelude::*;
         let mut seen = BTreeSet::new();
-        for (p, f) in &summary.failures {
-            if seen.len() >= args.max_shrink {
-                break;
-            }
-            if seen.insert(f.category.clone()) {
-                shrink_and_report(p, f, args.save.as_deref());
-            }
-        }
+        let firsts: Vec<&(Pair, Failure)> = summary
+            .failures
+            .iter()
+            .filter(|(_, f)| seen.insert(f.category.clone()))
+            .take(args.max_shrink)
+            .collect();
+        firsts
+            .par_iter()
+            .for_each(|(p, f)| shrink_and_report(p, f, args.save.as_deref()));
     }
     std::process::exit(i32::from(!summary.failures.is_empty()));
 }

@@ -915,6 +915,25 @@ impl Pair {
         })
     }
 
+    /// The regression-file text: [`Pair::to_json`] with one point per line.
+    pub(crate) fn to_file_text(&self, error: Option<&str>) -> String {
+        let v = self.to_json(error);
+        let mut s = String::from("{\n");
+        for key in ["seed", "pair", "generators", "error", "options"] {
+            let _ = writeln!(s, "  \"{key}\": {},", v[key]);
+        }
+        for (key, pts, end) in [("source", &self.source, ","), ("target", &self.target, "")] {
+            let _ = writeln!(s, "  \"{key}\": [");
+            for (i, p) in pts.iter().enumerate() {
+                let comma = if i + 1 < pts.len() { "," } else { "" };
+                let _ = writeln!(s, "    {}{comma}", serde_json::json!([p.x, p.y]));
+            }
+            let _ = writeln!(s, "  ]{end}");
+        }
+        s.push_str("}\n");
+        s
+    }
+
     /// Reads the form [`Pair::to_json`] writes. The curves are read again
     /// as user files are (cleaning, orientation).
     pub(crate) fn from_json(text: &str) -> Result<Pair, String> {
@@ -1263,6 +1282,8 @@ impl Summary {
             };
             vec![b.to_string()]
         });
+        s += &self.matrix();
+        s += &self.categories_by_generator();
         for (p, f) in self.failures.iter().take(show) {
             let _ = writeln!(s, "FAIL {}: {}", p.name(), f.message);
             let _ = writeln!(s, "  options: {}", p.options.label());
@@ -1274,6 +1295,72 @@ impl Summary {
                 "({} more failures not shown)",
                 self.failures.len() - show
             );
+        }
+        s
+    }
+}
+
+impl Summary {
+    /// Failures over totals for every generator (either curve of the pair)
+    /// against every combination of `--counts` and `--intermediate`.
+    pub(crate) fn matrix(&self) -> String {
+        let combos = [
+            (Counts::Insert, Intermediate::Target),
+            (Counts::Insert, Intermediate::Disk),
+            (Counts::Resample, Intermediate::Target),
+            (Counts::Resample, Intermediate::Disk),
+        ];
+        let mut s =
+            String::from("failures by generator and --counts/--intermediate (failed/total):\n");
+        let _ = write!(s, "  {:<14}", "");
+        for (c, i) in combos {
+            let _ = write!(s, " {:>17}", format!("{}/{}", counts_name(c), i.as_str()));
+        }
+        s.push('\n');
+        for g in Generator::ALL {
+            let _ = write!(s, "  {:<14}", g.as_str());
+            for (c, i) in combos {
+                let (mut f, mut t) = (0, 0);
+                for r in &self.rows {
+                    if r.generators.contains(&Some(g))
+                        && r.options.counts == c
+                        && r.options.intermediate == i
+                    {
+                        t += 1;
+                        f += usize::from(r.failed.is_some());
+                    }
+                }
+                let _ = write!(s, " {:>17}", format!("{f}/{t}"));
+            }
+            s.push('\n');
+        }
+        s
+    }
+
+    /// For each failure category, how many failing pairs involve each
+    /// generator.
+    pub(crate) fn categories_by_generator(&self) -> String {
+        use std::collections::BTreeMap;
+        let mut m: BTreeMap<&str, BTreeMap<&str, usize>> = BTreeMap::new();
+        for r in &self.rows {
+            if let Some(c) = &r.failed {
+                let mut gens: Vec<&str> = r
+                    .generators
+                    .iter()
+                    .map(|g| g.map_or("?", Generator::as_str))
+                    .collect();
+                gens.dedup();
+                for g in gens {
+                    *m.entry(c.as_str()).or_default().entry(g).or_default() += 1;
+                }
+            }
+        }
+        let mut s = String::from("generators involved, by failure category:\n");
+        for (c, gens) in m {
+            let mut gens: Vec<_> = gens.into_iter().collect();
+            gens.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(b.0)));
+            let list: Vec<String> = gens.iter().map(|(g, k)| format!("{g} {k}")).collect();
+            let _ = writeln!(s, "  {c}\n      {}", list.join(", "));
         }
         s
     }
@@ -1361,6 +1448,36 @@ pub(crate) fn shrink(pair: &Pair, failure: &Failure, budget: usize) -> (Pair, Fa
             break;
         }
     }
+    // Simpler options, when the failure stays: the cheapest quality and a
+    // single-morph correspondence.
+    for quality in [Quality::Any, Quality::Delaunay] {
+        if best.options.quality == quality {
+            break;
+        }
+        let mut cand = best.clone();
+        cand.options.quality = quality;
+        if let Some(f) = attempt(&cand) {
+            best = cand;
+            best_failure = f;
+            break;
+        }
+    }
+    if best.options.correspondence == Correspondence::Best {
+        for rule in [
+            Correspondence::Identity,
+            Correspondence::MinFlips,
+            Correspondence::Pivot,
+            Correspondence::Shape,
+        ] {
+            let mut cand = best.clone();
+            cand.options.correspondence = rule;
+            if let Some(f) = attempt(&cand) {
+                best = cand;
+                best_failure = f;
+                break;
+            }
+        }
+    }
     let side_len = |p: &Pair, side: usize| {
         if side == 0 {
             p.source.len()
@@ -1410,9 +1527,101 @@ pub(crate) fn shrink(pair: &Pair, failure: &Failure, budget: usize) -> (Pair, Fa
                 }
                 chunk /= 2;
             }
+            // Strips lose validity when one side loses a point alone:
+            // drop a point together with its nearest non-neighbour (across
+            // the strip).
+            let mut i = 0;
+            while i < side_len(&best, side) && trials.get() < budget {
+                let cur = if side == 0 {
+                    &best.source
+                } else {
+                    &best.target
+                };
+                let n = cur.len();
+                if n <= 4 {
+                    break;
+                }
+                let j = (0..n)
+                    .filter(|&j| j != i && j != (i + 1) % n && j != (i + n - 1) % n)
+                    .min_by(|&a, &b| {
+                        (cur[a] - cur[i])
+                            .length_squared()
+                            .total_cmp(&(cur[b] - cur[i]).length_squared())
+                    });
+                let Some(j) = j else { break };
+                let p: Vec<Point> = (0..n)
+                    .filter(|&k| k != i && k != j)
+                    .map(|k| cur[k])
+                    .collect();
+                let mut accepted = false;
+                if let Ok(p) = read_curve("shrink", &p) {
+                    let mut cand = best.clone();
+                    if side == 0 {
+                        cand.source = p;
+                    } else {
+                        cand.target = p;
+                    }
+                    if let Some(f) = attempt(&cand) {
+                        best = cand;
+                        best_failure = f;
+                        accepted = true;
+                    }
+                }
+                if !accepted {
+                    i += 1;
+                }
+            }
         }
         if (best.source.len(), best.target.len()) == before || trials.get() >= budget {
             break;
+        }
+    }
+    // Shorter coordinates: round each curve to a grid of 10^-k of its size
+    // for the smallest k that keeps it self-overlapping and failing.
+    for side in 0..2 {
+        for k in [2, 3, 4, 6, 8, 10, 12] {
+            if trials.get() >= budget {
+                break;
+            }
+            let cur = if side == 0 {
+                &best.source
+            } else {
+                &best.target
+            };
+            let lo = cur
+                .iter()
+                .copied()
+                .fold(Point::splat(f64::INFINITY), Point::min);
+            let hi = cur
+                .iter()
+                .copied()
+                .fold(Point::splat(f64::NEG_INFINITY), Point::max);
+            // To a power of ten, through decimal text, so that the rounded
+            // coordinates print short.
+            let e = ((hi - lo).max_element().log10().floor() as i32) - k;
+            let round = |x: f64| -> f64 {
+                format!("{}e{e}", (x / 10f64.powi(e)).round() as i64)
+                    .parse()
+                    .unwrap_or(x)
+            };
+            let rounded: Vec<Point> = cur
+                .iter()
+                .map(|p| Point::new(round(p.x), round(p.y)))
+                .collect();
+            let Ok(rounded) = read_curve("shrink", &rounded) else {
+                continue;
+            };
+            let mut cand = best.clone();
+            if side == 0 {
+                cand.source = rounded;
+            } else {
+                cand.target = rounded;
+            }
+            if let Some(f) = attempt(&cand) {
+                best = cand;
+                best_failure = f;
+                break;
+            }
         }
     }
     (best, best_failure)

@@ -30,8 +30,9 @@ use immerse::geom::{Orientation, Point, orient};
 /// the debug-profile pass, where the library's debug assertions run.
 const SHORT_PAIRS: u64 = if cfg!(debug_assertions) { 24 } else { 240 };
 
-/// Curves drawn per generator by the generator test.
-const PER_GENERATOR: usize = if cfg!(debug_assertions) { 12 } else { 60 };
+/// Curves drawn per generator by the generator test (enough that each
+/// generator's extremes show up for any seed).
+const PER_GENERATOR: usize = 40;
 
 fn perimeter(p: &[Point]) -> f64 {
     (0..p.len())
@@ -118,8 +119,11 @@ fn stress_generators_make_self_overlapping_curves() {
                 assert!(any(&|p| p.len() > 20));
             }
             Generator::Strip | Generator::ThinSpiral | Generator::ThinCurl => {
+                // Thinness is width/length times length²/extent² (up to
+                // about 30 for a long curled strip): 1e-7 needs a width
+                // below about 1e-7 of the length, a quarter of the draws.
                 assert!(
-                    min_of(&thinness) < 1e-8,
+                    min_of(&thinness) < 1e-7,
                     "{}: {}",
                     g.as_str(),
                     min_of(&thinness)

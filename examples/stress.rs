@@ -8,7 +8,7 @@
 //!
 //! ```text
 //! cargo run --release --example stress -- [--pairs N] [--seed S] [--start I]
-//!     [--show K] [--shrink] [--max-shrink K] [--save DIR]
+//!     [--show K] [--timeout S] [--shrink] [--max-shrink K] [--save DIR] [--csv FILE]
 //! cargo run --release --example stress -- --pair I [--seed S] [--shrink] [--save DIR]
 //! cargo run --release --example stress -- --replay FILE...
 //! ```
@@ -16,6 +16,8 @@
 //! - `--pairs N` (default 10000), `--seed S` (decimal or 0x-hex; default
 //!   the test's seed), `--start I`: run pairs I..I+N of that seed, on all
 //!   cores (rayon; set `RAYON_NUM_THREADS` to change).
+//! - `--timeout S`: end the run with exit code 3 when one pair runs longer
+//!   than S seconds (default 300), naming the pair.
 //! - `--show K`: print the first K failing pairs as JSON (default 5).
 //! - `--shrink`: shrink the first failure of each category (at most
 //!   `--max-shrink`, default 10) by dropping points and frames while it
@@ -32,9 +34,10 @@
 //!   n, milliseconds, failure category) for analysis.
 //! - `--replay FILE...`: run regression files.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 #[path = "../tests/common/stress.rs"]
@@ -49,6 +52,7 @@ struct Args {
     show: usize,
     shrink: bool,
     max_shrink: usize,
+    timeout: f64,
     save: Option<PathBuf>,
     one: Option<u64>,
     dump: Option<PathBuf>,
@@ -86,6 +90,7 @@ fn parse_args() -> Result<Args, String> {
         show: 5,
         shrink: false,
         max_shrink: 10,
+        timeout: 300.0,
         save: None,
         one: None,
         dump: None,
@@ -102,6 +107,7 @@ fn parse_args() -> Result<Args, String> {
             "--start" => a.start = parse_u64(&value()?)?,
             "--show" => a.show = parse_u64(&value()?)? as usize,
             "--max-shrink" => a.max_shrink = parse_u64(&value()?)? as usize,
+            "--timeout" => a.timeout = parse_u64(&value()?)? as f64,
             "--save" => a.save = Some(PathBuf::from(value()?)),
             "--pair" => a.one = Some(parse_u64(&value()?)?),
             "--dump" => a.dump = Some(PathBuf::from(value()?)),
@@ -254,7 +260,42 @@ fn main() {
     let failed = AtomicU64::new(0);
     let start = Instant::now();
     let step = (args.pairs / 10).max(1);
-    let summary = run_pairs(args.seed, args.start, args.pairs, &|_, r| {
+    // Watchdog: a pair still running after --timeout seconds ends the run
+    // (exit 3) with its index, so a hang fails CI instead of stalling it.
+    let running: Arc<Mutex<BTreeMap<u64, Instant>>> = Arc::default();
+    {
+        let running = Arc::clone(&running);
+        let (seed, timeout) = (args.seed, args.timeout);
+        std::thread::spawn(move || {
+            loop {
+                std::thread::sleep(std::time::Duration::from_secs(5));
+                let stuck: Vec<(u64, f64)> = running
+                    .lock()
+                    .map(|m| {
+                        m.iter()
+                            .map(|(&i, t)| (i, t.elapsed().as_secs_f64()))
+                            .filter(|&(_, s)| s > timeout)
+                            .collect()
+                    })
+                    .unwrap_or_default();
+                if let Some(&(i, secs)) = stuck.first() {
+                    println!(
+                        "TIMEOUT: pair {i} has run for {secs:.0} s (--timeout {timeout}); reproduce with\n  cargo run --release --example stress -- --seed {seed:#x} --pair {i}"
+                    );
+                    println!("{}", pair(seed, i).to_json(Some("timeout")));
+                    std::process::exit(3);
+                }
+            }
+        });
+    }
+    let summary = run_pairs(args.seed, args.start, args.pairs, &|i, r| {
+        let Ok(mut map) = running.lock() else { return };
+        let Some(r) = r else {
+            map.insert(i, Instant::now());
+            return;
+        };
+        map.remove(&i);
+        drop(map);
         if r.is_err() {
             failed.fetch_add(1, Ordering::Relaxed);
         }

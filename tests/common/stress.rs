@@ -583,7 +583,7 @@ fn short_edge(rng: &mut Rng, n: usize) -> Raw {
 /// Where the generated curve sits: rotation, mirror, scale, translation.
 fn transform(rng: &mut Rng, raw: Raw) -> Vec<Point> {
     let mut p = raw.points;
-    // Centre and normalise to a unit bounding box first.
+    // The bounding box, to scale and place the curve by its size.
     let lo = p
         .iter()
         .copied()
@@ -1198,6 +1198,16 @@ fn tally(rows: &[Row], title: &str, key: impl Fn(&Row) -> Vec<String>) -> String
 }
 
 impl Summary {
+    /// One line: failures, pairs, discards.
+    pub(crate) fn headline(&self) -> String {
+        format!(
+            "{} of {} pairs failed; {:.2}% of generated curves discarded",
+            self.failures.len(),
+            self.total(),
+            100.0 * self.discard_rate()
+        )
+    }
+
     /// Pairs run.
     pub(crate) fn total(&self) -> usize {
         self.rows.len()
@@ -1224,13 +1234,28 @@ impl Summary {
     pub(crate) fn report(&self, show: usize) -> String {
         use std::collections::BTreeMap;
         let mut s = String::new();
-        let _ = writeln!(
-            s,
-            "{} of {} pairs failed; {:.2}% of generated curves discarded",
-            self.failures.len(),
-            self.total(),
-            100.0 * self.discard_rate()
-        );
+        // Every failure on one line (the index reproduces it), the first
+        // `show` also as JSON.
+        for (k, (p, f)) in self.failures.iter().enumerate() {
+            let _ = writeln!(
+                s,
+                "FAIL {}: {} [{}]",
+                p.name(),
+                f.message,
+                p.options.label()
+            );
+            if k < show {
+                let _ = writeln!(s, "  {}", p.to_json(Some(&f.message)));
+            }
+        }
+        if self.failures.len() > show {
+            let _ = writeln!(
+                s,
+                "({} failing pairs not shown as JSON; `cargo run --release --example stress -- --pair I [--shrink]` prints one)",
+                self.failures.len() - show
+            );
+        }
+        let _ = writeln!(s, "{}", self.headline());
         let _ = writeln!(s, "generated curves by generator (kept / discarded):");
         for (g, (k, d)) in &self.generated {
             let _ = writeln!(s, "  {:<22} {k:6} / {d}", g.as_str());
@@ -1284,18 +1309,6 @@ impl Summary {
         });
         s += &self.matrix();
         s += &self.categories_by_generator();
-        for (p, f) in self.failures.iter().take(show) {
-            let _ = writeln!(s, "FAIL {}: {}", p.name(), f.message);
-            let _ = writeln!(s, "  options: {}", p.options.label());
-            let _ = writeln!(s, "  {}", p.to_json(Some(&f.message)));
-        }
-        if self.failures.len() > show {
-            let _ = writeln!(
-                s,
-                "({} more failures not shown)",
-                self.failures.len() - show
-            );
-        }
         s
     }
 }
@@ -1366,23 +1379,23 @@ impl Summary {
     }
 }
 
+/// Called with a pair's index when it starts (`None`) and ends (its
+/// result).
+pub(crate) type Progress<'a> = dyn Fn(u64, Option<&Result<Outcome, Failure>>) + Sync + 'a;
+
 /// Runs pairs `start..start + count` of the run with `seed`, in parallel
-/// (rayon), and collects every failure. `each` is called after every
-/// pair (for progress).
-pub(crate) fn run_pairs(
-    seed: u64,
-    start: u64,
-    count: u64,
-    each: &(dyn Fn(u64, &Result<Outcome, Failure>) + Sync),
-) -> Summary {
+/// (rayon), and collects every failure. `each` is called when a pair
+/// starts (with `None`) and when it ends (for progress and watchdogs).
+pub(crate) fn run_pairs(seed: u64, start: u64, count: u64, each: &Progress<'_>) -> Summary {
     use rayon::prelude::*;
     let results: Vec<(Pair, Result<Outcome, Failure>, f64)> = (start..start + count)
         .into_par_iter()
         .map(|i| {
+            each(i, None);
             let p = pair(seed, i);
             let t = std::time::Instant::now();
             let r = run_pair(&p);
-            each(i, &r);
+            each(i, Some(&r));
             (p, r, t.elapsed().as_secs_f64())
         })
         .collect();

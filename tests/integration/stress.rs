@@ -221,7 +221,7 @@ fn stress_short_random_pairs_all_morph() {
     eprintln!(
         "stress (short): {} pairs in {secs:.1} s; {}",
         summary.total(),
-        summary.report(0).lines().next().unwrap_or("")
+        summary.headline()
     );
     assert!(
         summary.discard_rate() < 0.05,

@@ -14,4 +14,5 @@ mod morph;
 mod outputs;
 mod pairs;
 mod properties;
+mod stress;
 mod util;

@@ -150,6 +150,12 @@ fn pad(small: &[Point], alpha: &[f64], beta: &[f64], k: usize) -> Vec<Point> {
             } else {
                 0.0
             };
+            // Keep clear of the edge's ends, where the sides of a thin
+            // wedge are within rounding of each other: at least 1% of the
+            // even spacing from either end (the bounds grow with j, so the
+            // order is kept).
+            let even = (j - j0) as f64 / (j1 - j0) as f64;
+            let f = f.clamp(0.01 * even, 1.0 - 0.01 * (1.0 - even));
             out.push(p.lerp(q, f));
         }
         // Inserted points must be distinct from each other and from the

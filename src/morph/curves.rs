@@ -122,6 +122,18 @@ pub enum CurveMorphError {
         /// Why.
         reason: NotSelfOverlapping,
     },
+    /// Both curves are self-overlapping, but inserting vertices on their
+    /// edges (to equalise the counts) made one of them not so: rounding put
+    /// an inserted vertex on the wrong side of a part thinner than the
+    /// coordinates can resolve. Not the user's fault; giving both curves
+    /// the same count avoids it.
+    #[error(
+        "inserting vertices to equalise the counts made a curve not self-overlapping ({reason}): a part of it is thinner than its coordinates can resolve; give both curves the same number of points"
+    )]
+    Insertion {
+        /// What the triangulation found.
+        reason: NotSelfOverlapping,
+    },
     /// A fraction is not a number in [0, 1].
     #[error("frame fraction {value} (at position {index}) is not a number in [0, 1]")]
     Fraction {
@@ -409,17 +421,31 @@ pub(crate) fn prepare(
 ) -> Result<Prepared, CurveMorphError> {
     let mut fallbacks = Vec::new();
     if counts == Counts::Insert && correspondence == Correspondence::Outline {
-        let (a, b, k) = crate::correspond::align(a, b);
-        let ta = triangulate_side(&a, quality, Side::Source)?.triangles;
-        let tb = triangulate_side(&b, quality, Side::Target)?.triangles;
-        return Ok(Prepared {
-            a,
-            b,
-            ta,
-            tb,
-            shift: Some(k),
-            fallbacks,
-        });
+        let (pa, pb, k) = crate::correspond::align(a, b);
+        match (triangulate_with(&pa, quality), triangulate_with(&pb, quality)) {
+            (Ok(ta), Ok(tb)) => {
+                return Ok(Prepared {
+                    a: pa,
+                    b: pb,
+                    ta: ta.triangles,
+                    tb: tb.triangles,
+                    shift: Some(k),
+                    fallbacks,
+                });
+            }
+            (Err(reason), _) | (_, Err(reason)) => {
+                // Rounding put an inserted vertex on the wrong side of a
+                // thin part: split the longest edges instead (below), and
+                // say so; the user's curves are only blamed if they are
+                // not self-overlapping themselves.
+                triangulate_side(a, quality, Side::Source)?;
+                triangulate_side(b, quality, Side::Target)?;
+                fallbacks.push(Fallback::new(
+                    "split the longest edges instead of inserting vertices where the other curve's are",
+                    &format!("the aligned insertion made a curve not self-overlapping ({reason})"),
+                ));
+            }
+        }
     }
     if counts == Counts::Resample {
         let (ra, rb) = equal_counts(a, b, Counts::Resample);
@@ -450,9 +476,17 @@ pub(crate) fn prepare(
             }
         }
     }
-    let (a, b) = equal_counts(a, b, Counts::Insert);
-    let ta = triangulate_side(&a, quality, Side::Source)?.triangles;
-    let tb = triangulate_side(&b, quality, Side::Target)?.triangles;
+    let (ia, ib) = equal_counts(a, b, Counts::Insert);
+    let (ta, tb) = match (triangulate_with(&ia, quality), triangulate_with(&ib, quality)) {
+        (Ok(ta), Ok(tb)) => (ta.triangles, tb.triangles),
+        (Err(reason), _) | (_, Err(reason)) => {
+            // Is it the user's curve, or the insertion?
+            triangulate_side(a, quality, Side::Source)?;
+            triangulate_side(b, quality, Side::Target)?;
+            return Err(CurveMorphError::Insertion { reason });
+        }
+    };
+    let (a, b) = (ia, ib);
     Ok(Prepared {
         a,
         b,

@@ -22,7 +22,7 @@ use immerse::geom::polygon::triangle_angles;
 use immerse::geom::{Orientation, orient};
 use immerse::immersion::triangulate;
 use immerse::morph::{
-    Correspondence, Counts, CurveMorphOptions, Intermediate, MorphReport, equal_counts,
+    Correspondence, Counts, CurveMorphOptions, Intermediate, MorphReport,
     morph_curves,
 };
 use immerse::quality::Quality;
@@ -1023,6 +1023,47 @@ pub(crate) struct Outcome {
     pub(crate) report: MorphReport,
 }
 
+/// Why `frame` does not run along the closed polyline `outline` in order
+/// from its vertex 0 (every point within 1e-9 of the outline's size of it,
+/// at non-decreasing arc length), or `None`.
+fn off_outline(frame: &[Point], outline: &[Point]) -> Option<String> {
+    let m = outline.len();
+    let size = outline
+        .iter()
+        .map(|p| (*p - outline[0]).length())
+        .fold(0.0, f64::max);
+    let tol = 1e-9 * size.max(f64::MIN_POSITIVE);
+    if frame[0] != outline[0] {
+        return Some(format!("vertex 0 is {:?}, not {:?}", frame[0], outline[0]));
+    }
+    // Walk the outline's edges forward as the frame's points go along.
+    let mut edge = 0usize;
+    for (i, &p) in frame.iter().enumerate().skip(1) {
+        let mut found = false;
+        for _ in 0..=m {
+            let (u, v) = (outline[edge], outline[(edge + 1) % m]);
+            let e = v - u;
+            let t = if e.length_squared() > 0.0 {
+                ((p - u).dot(e) / e.length_squared()).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            if (u + e * t - p).length() <= tol {
+                found = true;
+                break;
+            }
+            edge += 1;
+            if edge >= m {
+                break;
+            }
+        }
+        if !found {
+            return Some(format!("vertex {i} {p:?} is not on the outline in order"));
+        }
+    }
+    None
+}
+
 /// `frame` holds `original`'s vertices, exactly, in cyclic order starting
 /// at `start` (other vertices may sit between them).
 fn holds_in_order(frame: &[Point], original: &[Point], start: usize) -> bool {
@@ -1063,8 +1104,7 @@ pub(crate) fn run_pair(pair: &Pair) -> Result<Outcome, Failure> {
         Ok(Err(e)) => return Err(Failure::new("error", e.to_string())),
         Ok(Ok(x)) => x,
     };
-    let (ea, eb) = equal_counts(a, b, pair.options.counts);
-    let n = ea.len();
+    let n = a.len().max(b.len());
     if morph.frames.len() != fractions.len() {
         return Err(Failure::new(
             "frame count",
@@ -1095,49 +1135,32 @@ pub(crate) fn run_pair(pair: &Pair) -> Result<Outcome, Failure> {
             ));
         }
     }
-    let first = &morph.frames[0].points;
-    if *first != ea {
-        let i = (0..n).find(|&i| first[i] != ea[i]).unwrap_or(0);
-        return Err(Failure::new(
-            "first frame is not the source",
-            format!("vertex {i}: {:?} instead of {:?}", first[i], ea[i]),
-        ));
-    }
+    // The ends are the inputs after count equalisation, whatever way the
+    // vertices were added: with insertion (asked for, or the fallback of
+    // resampling) every original vertex is there exactly and in order; in
+    // every case every vertex lies on the input's outline, in order along
+    // it.
+    let inserted = pair.options.counts == Counts::Insert
+        || report
+            .fallbacks
+            .iter()
+            .any(|f| f.what.contains("inserted vertices instead of resampling"));
     let k = report.shift;
+    let first = &morph.frames[0].points;
     let last = &morph.frames[morph.frames.len() - 1].points;
-    if let Some(i) = (0..n).find(|&i| last[i] != eb[(i + k) % n]) {
-        return Err(Failure::new(
-            "last frame is not the target",
-            format!(
-                "vertex {i}: {:?} instead of {:?} (shift {k})",
-                last[i],
-                eb[(i + k) % n]
-            ),
-        ));
-    }
-    match pair.options.counts {
-        Counts::Insert => {
-            if !holds_in_order(first, a, 0) {
-                return Err(Failure::new(
-                    "first frame is not the source",
-                    "the source's vertices are not all there in order".to_string(),
-                ));
-            }
-            // The target's vertex 0 sits at frame vertex n − shift.
-            if !holds_in_order(last, b, (n - k) % n) {
-                return Err(Failure::new(
-                    "last frame is not the target",
-                    "the target's vertices are not all there in order".to_string(),
-                ));
-            }
+    let last_from_b: Vec<Point> = (0..n).map(|i| last[(i + n - k) % n]).collect();
+    for (frame, input, which) in [
+        (&first[..], &a[..], "first frame is not the source"),
+        (&last_from_b[..], &b[..], "last frame is not the target"),
+    ] {
+        if inserted && !holds_in_order(frame, input, 0) {
+            return Err(Failure::new(
+                which,
+                "the input's vertices are not all there in order".to_string(),
+            ));
         }
-        Counts::Resample => {
-            if first[0] != a[0] {
-                return Err(Failure::new(
-                    "first frame is not the source",
-                    "resampling moved the first vertex".to_string(),
-                ));
-            }
+        if let Some(why) = off_outline(frame, input) {
+            return Err(Failure::new(which, why));
         }
     }
     Ok(Outcome { n, report })

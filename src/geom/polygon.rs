@@ -185,6 +185,23 @@ pub fn triangle_angles(a: Point, b: Point, c: Point) -> [f64; 3] {
     [ang(a, b, c), ang(b, c, a), ang(c, a, b)]
 }
 
+/// The sine of the smallest interior angle of the triangle `a, b, c`
+/// (the smallest angle is at most π/3, so its sine orders triangles as the
+/// angle does), without trigonometry: the least of |cross| / (|u| |v|)
+/// over the corners (the obtuse corner's sine is never smaller). 0 for a
+/// degenerate triangle. Measurement only.
+pub fn min_angle_sine(a: Point, b: Point, c: Point) -> f64 {
+    let (ab, bc, ca) = (b - a, c - b, a - c);
+    let cross = ab.perp_dot(bc).abs();
+    let (lab, lbc, lca) = (ab.length(), bc.length(), ca.length());
+    let den = (lab * lbc).max(lbc * lca).max(lca * lab);
+    if den > 0.0 && cross.is_finite() {
+        cross / den
+    } else {
+        0.0
+    }
+}
+
 /// The smallest interior angle (radians) over the triangles `tris` of
 /// `points`; +∞ when there are none. Measurement only.
 pub fn min_triangle_angle(points: &[Point], tris: &[[u32; 3]]) -> f64 {

@@ -422,7 +422,10 @@ pub(crate) fn prepare(
     let mut fallbacks = Vec::new();
     if counts == Counts::Insert && correspondence == Correspondence::Outline {
         let (pa, pb, k) = crate::correspond::align(a, b);
-        match (triangulate_with(&pa, quality), triangulate_with(&pb, quality)) {
+        match (
+            triangulate_with(&pa, quality),
+            triangulate_with(&pb, quality),
+        ) {
             (Ok(ta), Ok(tb)) => {
                 return Ok(Prepared {
                     a: pa,
@@ -477,7 +480,10 @@ pub(crate) fn prepare(
         }
     }
     let (ia, ib) = equal_counts(a, b, Counts::Insert);
-    let (ta, tb) = match (triangulate_with(&ia, quality), triangulate_with(&ib, quality)) {
+    let (ta, tb) = match (
+        triangulate_with(&ia, quality),
+        triangulate_with(&ib, quality),
+    ) {
         (Ok(ta), Ok(tb)) => (ta.triangles, tb.triangles),
         (Err(reason), _) | (_, Err(reason)) => {
             // Is it the user's curve, or the insertion?
@@ -497,6 +503,11 @@ pub(crate) fn prepare(
     })
 }
 
+/// Checked samples of the path per bounding-box diagonal of vertex travel
+/// at least: a leg's samples are refined until no vertex moves more than
+/// 1/64 of the larger input's diagonal between two of them.
+const SAMPLES_PER_DIAGONAL: f64 = 64.0;
+
 /// Builds both sides for the shift `k` and picks the one to use.
 pub(crate) fn sides(p: &Prepared, k: usize, options: &CurveMorphOptions) -> Sides {
     let (a, b, ta, tb) = (&p.a, &p.b, &p.ta, &p.tb);
@@ -512,6 +523,18 @@ pub(crate) fn sides(p: &Prepared, k: usize, options: &CurveMorphOptions) -> Side
     } else {
         ThirdVertexPath::Hybrid
     };
+    let diag = |p: &[Point]| {
+        let lo = p
+            .iter()
+            .copied()
+            .fold(Point::splat(f64::INFINITY), Point::min);
+        let hi = p
+            .iter()
+            .copied()
+            .fold(Point::splat(f64::NEG_INFINITY), Point::max);
+        (hi - lo).length()
+    };
+    let max_step = diag(a).max(diag(b)) / SAMPLES_PER_DIAGONAL;
     let side = |s: &[Point], t: &[[u32; 3]], o: &[Point], to: &[[u32; 3]]| {
         Staged::build(&SideInput {
             s,
@@ -524,6 +547,7 @@ pub(crate) fn sides(p: &Prepared, k: usize, options: &CurveMorphOptions) -> Side
             margin: m.fan_margin,
             intermediate: options.intermediate,
             floor,
+            max_step,
         })
     };
     let side_a = side(a, ta, &b_in_a, &tb_in_a);

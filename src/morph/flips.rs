@@ -12,6 +12,69 @@
 use crate::flip::key;
 pub use crate::flip::{Flip, FlipTriangulation, crosses};
 
+/// Counts, for any chord, how many chords of a fixed set it crosses, in
+/// O(log² m) per query (a merge-sort tree over the set's first endpoints).
+#[derive(Clone, Debug)]
+pub(crate) struct CrossingCounter {
+    /// The chords `(c, d)`, `c < d`, sorted by `c`.
+    firsts: Vec<u32>,
+    /// Per tree level, the second endpoints of each block of 2^level
+    /// chords (in `firsts` order), sorted within the block.
+    levels: Vec<Vec<u32>>,
+}
+
+impl CrossingCounter {
+    pub(crate) fn new(chords: &[(u32, u32)]) -> CrossingCounter {
+        let mut sorted: Vec<(u32, u32)> = chords.iter().map(|&(a, b)| key(a, b)).collect();
+        sorted.sort_unstable();
+        let firsts: Vec<u32> = sorted.iter().map(|c| c.0).collect();
+        let mut levels = vec![sorted.iter().map(|c| c.1).collect::<Vec<u32>>()];
+        let mut width = 1usize;
+        while width < sorted.len() {
+            width *= 2;
+            let mut next = levels.last().cloned().unwrap_or_default();
+            for block in next.chunks_mut(width) {
+                block.sort_unstable();
+            }
+            levels.push(next);
+        }
+        CrossingCounter { firsts, levels }
+    }
+
+    /// Chords with first endpoint in `[lo, hi)` (by index range in
+    /// `firsts`) whose second endpoint satisfies `pred` (a range test).
+    fn count_range(&self, from: usize, to: usize, lo2: u32, hi2: u32) -> usize {
+        // Second endpoints in [lo2, hi2).
+        let mut total = 0;
+        let mut i = from;
+        while i < to {
+            // The largest aligned block starting at i that fits in [i, to).
+            let mut level = 0usize;
+            while level + 1 < self.levels.len() {
+                let w = 1usize << (level + 1);
+                if i % w != 0 || i + w > to {
+                    break;
+                }
+                level += 1;
+            }
+            let w = 1usize << level;
+            let block = &self.levels[level][i..i + w];
+            total += block.partition_point(|&x| x < hi2) - block.partition_point(|&x| x < lo2);
+            i += w;
+        }
+        total
+    }
+
+    /// How many of the chords the chord `(a, b)` crosses.
+    pub(crate) fn count(&self, d: (u32, u32)) -> usize {
+        let (a, b) = key(d.0, d.1);
+        let idx = |v: u32| self.firsts.partition_point(|&x| x < v);
+        // c in (a, b) and d > b, or c < a and d in (a, b).
+        self.count_range(idx(a + 1), idx(b), b + 1, u32::MAX)
+            + self.count_range(0, idx(a), a + 1, b)
+    }
+}
+
 /// The number of crossings between the diagonals of two triangulations.
 pub fn crossing_count(d1: &[(u32, u32)], d2: &[(u32, u32)]) -> usize {
     d1.iter()
@@ -174,6 +237,24 @@ mod tests {
                         &target_diagonals
                     )
             );
+        }
+    }
+
+    #[test]
+    fn the_crossing_counter_matches_the_pairwise_count() {
+        let mut rng = Rng(0xc0ffee);
+        for _ in 0..100 {
+            let n = 4 + (rng.next() * 60.0) as usize;
+            let goal =
+                FlipTriangulation::new(n, &random_triangulation(n as u32, &mut rng)).diagonals();
+            let counter = CrossingCounter::new(&goal);
+            for a in 0..n as u32 {
+                for b in a + 2..n as u32 {
+                    let want = goal.iter().filter(|&&g| crosses(g, (a, b))).count();
+                    assert_eq!(counter.count((a, b)), want, "n={n} ({a}, {b})");
+                    assert_eq!(counter.count((b, a)), want);
+                }
+            }
         }
     }
 

@@ -34,12 +34,12 @@ use super::{Compatible, CompatibleError, MorphError, ThirdVertexPath, area_and_c
 use crate::flip::canonical;
 use crate::frames::Fallback;
 use crate::geom::Point;
-use crate::geom::polygon::{min_triangle_angle as min_angle, signed_area};
+use crate::geom::polygon::{min_angle_sine, min_triangle_angle as min_angle, signed_area};
 use crate::immersion::{check, check_triangles, is_valid_triangle};
 use crate::tree::{RootChoice, disk_positions};
 
 /// Step of the walk along one leg, in the leg's own parameter.
-pub const LEG_STEP: f64 = 1.0 / 200.0;
+pub const LEG_STEP: f64 = 1.0 / 32.0;
 
 /// The staged path's flip schedule step (kept for the public API): the
 /// same as [`LEG_STEP`].
@@ -63,6 +63,10 @@ pub(crate) struct Leg {
 }
 
 impl Leg {
+    fn plan_path(&self) -> ThirdVertexPath {
+        self.path
+    }
+
     /// The leg's end parameter.
     pub(crate) fn s_end(&self) -> f64 {
         self.samples.last().copied().unwrap_or(0.0)
@@ -128,20 +132,29 @@ pub fn disk_for(points: &[Point], area: f64, centroid: Point) -> Vec<Point> {
 /// The flip gate of docs/design.md §7: the flip of the quad `[a, b, c, d]`
 /// (diagonal a–c to b–d) may be applied in shape `p` when both new
 /// triangles are valid and their minimum angle is at least min(the old
-/// pair's, `floor`); returns that minimum angle. With `floor` = 0 only
-/// validity is required.
+/// pair's, `floor`); returns the sine of that minimum angle (it orders
+/// flips as the angle does). With `floor` = 0 only validity is required.
 pub(crate) fn gate(p: &[Point], quad: [u32; 4], floor: f64) -> Option<f64> {
     let [a, b, c, d] = quad;
+    let q = |v: u32| p[v as usize];
+    // Cheap exact rejection first: the quad must be strictly convex at
+    // b and d for both new triangles to be counter-clockwise.
+    if !(crate::geom::orient(q(a), q(b), q(d)).is_ccw()
+        && crate::geom::orient(q(b), q(c), q(d)).is_ccw())
+    {
+        return None;
+    }
     let new = [canonical([a, b, d]), canonical([b, c, d])];
-    let old = [canonical([a, b, c]), canonical([c, d, a])];
     if !new
         .iter()
         .all(|t| is_valid_triangle(p, t[0] as usize, t[1] as usize, t[2] as usize))
     {
         return None;
     }
-    let m = min_angle(p, &new);
-    (m >= min_angle(p, &old).min(floor)).then_some(m)
+    let sine = |t: [u32; 3]| min_angle_sine(q(t[0]), q(t[1]), q(t[2]));
+    let m = sine([a, b, d]).min(sine([b, c, d]));
+    let old = sine([a, b, c]).min(sine([c, d, a]));
+    (m >= old.min(floor.min(std::f64::consts::FRAC_PI_2).sin())).then_some(m)
 }
 
 /// Which flips come next.
@@ -230,6 +243,9 @@ pub(crate) struct SideInput<'a> {
     pub(crate) intermediate: super::Intermediate,
     /// The gate's angle floor on the target route.
     pub(crate) floor: f64,
+    /// The largest vertex move allowed between checked samples (samples
+    /// are refined until it holds).
+    pub(crate) max_step: f64,
 }
 
 impl SideInput<'_> {
@@ -465,15 +481,18 @@ fn walk(
             let s = (k as f64 * LEG_STEP).min(1.0);
             let (p, r) = leg.plan.positions_counted(s, path);
             repairs += r;
-            if let Err(defect) = check_triangles(&p, cur.triangles()) {
-                break Err(format!(
-                    "the {path} path gave an invalid frame at s = {s} ({defect})"
-                ));
-            }
-            leg.samples.push(s);
-            let (step, mean) = moves(&prev, &p);
-            leg.travel.push(leg.length() + step);
-            leg.mean_travel += mean;
+            let p = match record(
+                &mut leg,
+                cur.triangles(),
+                inp.max_step,
+                &prev,
+                s,
+                p,
+                &mut repairs,
+            ) {
+                Ok(p) => p,
+                Err(e) => break Err(e),
+            };
             let applied = if s < 1.0 || !at_disk {
                 order.batch(cur, &p, floor, false)
             } else {
@@ -521,7 +540,7 @@ fn last_leg(
     let compete = inp.final_path == ThirdVertexPath::Straight;
     let mut best: Option<(Leg, usize)> = None;
     for (attempt, path) in candidates.drain(..).enumerate() {
-        match sample_leg(plan.clone(), path, x, tris) {
+        match sample_leg(plan.clone(), path, x, tris, inp.max_step) {
             Ok((leg, repairs)) => {
                 if attempt > 0 && best.is_none() {
                     st.fallbacks.push(Fallback::new(
@@ -562,6 +581,7 @@ fn sample_leg(
     path: ThirdVertexPath,
     x: &[Point],
     tris: &[[u32; 3]],
+    max_step: f64,
 ) -> Result<(Leg, usize), String> {
     let steps = (1.0 / LEG_STEP).round() as usize;
     let mut leg = Leg {
@@ -577,18 +597,51 @@ fn sample_leg(
         let s = k as f64 / steps as f64;
         let (p, r) = leg.plan.positions_counted(s, path);
         repairs += r;
-        if let Err(defect) = check_triangles(&p, tris) {
-            return Err(format!(
-                "the {path} path gave an invalid frame at s = {s} ({defect})"
-            ));
-        }
-        leg.samples.push(s);
-        let (step, mean) = moves(&prev, &p);
-        leg.travel.push(leg.length() + step);
-        leg.mean_travel += mean;
-        prev = p;
+        prev = record(&mut leg, tris, max_step, &prev, s, p, &mut repairs)?;
     }
     Ok((leg, repairs))
+}
+
+/// Finest refinement of a leg's samples, in its own parameter.
+const MIN_SAMPLE_STEP: f64 = 1.0 / 4096.0;
+
+/// Checks the sample `p` at `s` exactly and appends it to the leg, after
+/// first inserting (checked) samples halfway back toward the previous one
+/// wherever some vertex would move more than `max_step` between samples,
+/// so that the timing table never hides a fast stretch and every stretch
+/// of the path is checked finely. Returns `p`.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the leg, its triangulation and the two samples"
+)]
+fn record(
+    leg: &mut Leg,
+    tris: &[[u32; 3]],
+    max_step: f64,
+    prev: &[Point],
+    s: f64,
+    p: Vec<Point>,
+    repairs: &mut usize,
+) -> Result<Vec<Point>, String> {
+    let path = leg.plan_path();
+    if let Err(defect) = check_triangles(&p, tris) {
+        return Err(format!(
+            "the {path} path gave an invalid frame at s = {s} ({defect})"
+        ));
+    }
+    let s_prev = leg.s_end();
+    let (step, mean) = moves(prev, &p);
+    if step > max_step && s - s_prev > MIN_SAMPLE_STEP {
+        let sm = 0.5 * (s_prev + s);
+        let (pm, r) = leg.plan.positions_counted(sm, path);
+        *repairs += r;
+        let pm = record(leg, tris, max_step, prev, sm, pm, repairs)?;
+        return record(leg, tris, max_step, &pm, s, p, repairs);
+    }
+    leg.samples.push(s);
+    leg.travel.push(leg.length() + step);
+    leg.mean_travel += mean;
+    Ok(p)
 }
 
 /// The largest and the mean distance the vertices move between `a` and
@@ -637,6 +690,7 @@ mod tests {
             margin: 0.05,
             intermediate,
             floor: 0.25 * min_angle(a, ta).min(min_angle(b, tb)),
+            max_step: 0.05,
         })
         .unwrap()
     }

@@ -26,7 +26,7 @@
 //! angles (a local unblock); if that is not enough either, the disk route
 //! of docs/design.md §7 finishes the job, so the procedure always ends.
 
-use super::flips::{FlipTriangulation, crosses};
+use super::flips::FlipTriangulation;
 use super::lay_out_rooted;
 use super::layout::fit_similarity;
 use super::staged::gate;
@@ -142,6 +142,8 @@ pub(crate) struct Candidates {
     by_diagonal: std::collections::BTreeMap<(u32, u32), Candidate>,
     /// The goal's diagonals, sorted.
     goal: Vec<(u32, u32)>,
+    /// Crossing counts against the goal.
+    crossings: super::flips::CrossingCounter,
 }
 
 impl Candidates {
@@ -149,6 +151,7 @@ impl Candidates {
         let mut c = Candidates {
             by_diagonal: std::collections::BTreeMap::new(),
             goal: goal.to_vec(),
+            crossings: super::flips::CrossingCounter::new(goal),
         };
         for d in cur.diagonals() {
             c.refresh_one(cur, d);
@@ -166,9 +169,8 @@ impl Candidates {
         let Some((quad, _)) = cur.quad(d.0, d.1) else {
             return;
         };
-        let count = |c: (u32, u32)| goal.iter().filter(|&&g| crosses(g, c)).count() as i64;
         let new = (quad[1].min(quad[3]), quad[1].max(quad[3]));
-        let gain = count(d) - count(new);
+        let gain = self.crossings.count(d) as i64 - self.crossings.count(new) as i64;
         if gain > 0 {
             self.by_diagonal.insert(
                 d,
@@ -206,19 +208,32 @@ impl Candidates {
     }
 
     /// Applies acceptable flips at shape `p` (largest gain first, then the
-    /// best new minimum angle) until none is left; returns how many.
+    /// best new minimum angle) until none is left; returns how many. Each
+    /// pass gates every candidate once and applies them in that order,
+    /// gating each again just before (an earlier flip of the pass may have
+    /// changed its quad); flips made possible by the pass wait for the
+    /// next pass.
     pub(crate) fn batch(&mut self, cur: &mut FlipTriangulation, p: &[Point], floor: f64) -> usize {
         let mut applied = 0;
         loop {
-            let best = self
+            let mut ready: Vec<(Candidate, f64)> = self
                 .iter()
                 .filter_map(|c| gate(p, c.quad, floor).map(|m| (*c, m)))
-                .max_by(|(c1, m1), (c2, m2)| c1.gain.cmp(&c2.gain).then(m1.total_cmp(m2)));
-            let Some((c, _)) = best else {
+                .collect();
+            if ready.is_empty() {
                 return applied;
-            };
-            self.flip(cur, c);
-            applied += 1;
+            }
+            ready.sort_by(|(c1, m1), (c2, m2)| c2.gain.cmp(&c1.gain).then(m2.total_cmp(m1)));
+            for (c, _) in ready {
+                // Still a candidate with the same quad, and still acceptable?
+                let current = self.by_diagonal.get(&c.from).copied();
+                let Some(now) = current else { continue };
+                if now.quad != c.quad || gate(p, now.quad, floor).is_none() {
+                    continue;
+                }
+                self.flip(cur, now);
+                applied += 1;
+            }
         }
     }
 }

@@ -10,6 +10,10 @@
 //! - [`triangulate_maxmin`]: the interval DP maximising the minimum angle
 //!   exactly over all valid triangulations (docs/design.md §3), O(n³).
 //!
+//! A simple polygon takes a short cut for `delaunay`: its
+//! constrained Delaunay triangulation (spade, O(n log n)) is the immersed
+//! Delaunay triangulation, checked exactly before use.
+//!
 //! [`Quality`] names the choice (`any`, `delaunay`, `maxmin` on the command
 //! line) and [`triangulate_with`] dispatches on it. Guaranteed order of the
 //! minimum angles: `maxmin ≥ delaunay ≥ any` (flips only raise the sorted
@@ -17,6 +21,7 @@
 
 mod flips;
 mod optimal;
+mod simple;
 
 pub use flips::improve;
 
@@ -124,6 +129,21 @@ pub fn triangulate_with_progress(
     q: Quality,
     progress: &mut dyn FnMut(f64),
 ) -> Result<Immersion, NotSelfOverlapping> {
+    // A simple polygon's Delaunay triangulation is its constrained
+    // Delaunay triangulation: O(n log n) instead of the DP (checked exactly
+    // inside; the DP is the fallback). `any` keeps meaning the DP's witness.
+    if q == Quality::Delaunay {
+        precheck(points)?;
+        if crate::geom::polygon::is_simple(points)
+            && let Some(triangles) = simple::cdt(points)
+        {
+            progress(1.0);
+            return Ok(Immersion {
+                points: points.to_vec(),
+                triangles,
+            });
+        }
+    }
     match q {
         Quality::Any => triangulate_progress(points, progress),
         Quality::Delaunay => triangulate_progress(points, progress).map(improve),

@@ -22,8 +22,7 @@ use immerse::geom::polygon::triangle_angles;
 use immerse::geom::{Orientation, orient};
 use immerse::immersion::triangulate;
 use immerse::morph::{
-    Correspondence, Counts, CurveMorphOptions, Intermediate, MorphReport,
-    morph_curves,
+    Correspondence, Counts, CurveMorphOptions, Intermediate, MorphReport, morph_curves,
 };
 use immerse::quality::Quality;
 use std::f64::consts::{PI, TAU};

@@ -13,4 +13,5 @@ mod mesh;
 mod morph;
 mod pairs;
 mod properties;
+mod sequence;
 mod util;

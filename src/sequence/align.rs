@@ -63,8 +63,13 @@ fn diagonal(points: &[Point]) -> f64 {
     (hi - lo).length()
 }
 
-/// The place at parameter `u` of edge `e`, snapped to a vertex when it is
-/// one (or within 1e-9 of the key's size of one).
+/// A hinted point this close to a vertex (as a fraction of the key's
+/// bounding-box diagonal) is that vertex: a vertex inserted closer would
+/// only make a sliver.
+pub const HINT_SNAP: f64 = 1e-3;
+
+/// The place at parameter `u` of edge `e`, snapped to a vertex when it
+/// lies within `snap` of one.
 fn on_edge(points: &[Point], e: usize, u: f64, snap: f64) -> Place {
     let n = points.len();
     let (a, b) = (points[e], points[(e + 1) % n]);
@@ -87,7 +92,7 @@ fn on_edge(points: &[Point], e: usize, u: f64, snap: f64) -> Place {
 fn resolve(points: &[Point], at: HintAt, tolerance: f64) -> Result<Place, String> {
     let n = points.len();
     let diag = diagonal(points);
-    let snap = 1e-9 * diag;
+    let snap = HINT_SNAP * diag;
     match at {
         HintAt::Vertex(i) => {
             if i < n {

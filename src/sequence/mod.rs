@@ -26,6 +26,7 @@
 mod align;
 pub mod timing;
 
+pub use align::HINT_SNAP;
 pub use timing::{Ease, KeySpeed, KeyTiming, Sample, Schedule, Timing, key_speeds};
 
 use crate::correspond::shift_triangles;
@@ -64,11 +65,13 @@ pub enum HintAt {
     /// A vertex of the key, by its index in [`Key::points`].
     Vertex(usize),
     /// The point of the curve nearest to this one (it must lie within
-    /// [`SequenceOptions::hint_tolerance`] of the curve); a vertex when it
-    /// is one, else a vertex inserted on its edge.
+    /// [`SequenceOptions::hint_tolerance`] of the curve); the vertex there
+    /// or within [`HINT_SNAP`] of the key's size, else a vertex inserted
+    /// on its edge.
     Point(Point),
     /// The point at this fraction of the arc length from vertex 0, along
-    /// the key's (counter-clockwise) order; in [0, 1].
+    /// the key's (counter-clockwise) order; in [0, 1]. Snapped to a vertex
+    /// as [`HintAt::Point`] is.
     Fraction(f64),
 }
 

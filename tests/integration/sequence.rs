@@ -564,3 +564,111 @@ fn animate_bad_inputs_exit_2_with_one_line() {
         "{err}"
     );
 }
+
+/// One SVG drawing as the keys: its layers (top-level groups), or each
+/// closed shape.
+#[test]
+fn svg_drawings_give_their_layers_or_shapes_as_keys() {
+    use immerse::curve::SvgShapes;
+    let layers =
+        Curve::all_from_svg_path(curve("sequence/ribbon-loops.svg"), SvgShapes::Auto).unwrap();
+    let names: Vec<&str> = layers.iter().map(|c| c.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "ribbon-loops group 'ribbon'",
+            "ribbon-loops group 'tail'",
+            "ribbon-loops group 'two-loops'",
+            "ribbon-loops group 'ribbon-again'"
+        ]
+    );
+    // Each layer is its own drawing, moved: the same points up to the
+    // translation.
+    let ribbon = load("ribbon-curl.svg");
+    assert_eq!(layers[0].len(), ribbon.len());
+    assert_eq!(layers[0].points, layers[3].points);
+    let svg = br#"<svg xmlns="http://www.w3.org/2000/svg">
+        <path d="M 0 0 L 10 0 L 10 10 Z M 20 0 L 30 0 L 30 10 Z"/>
+        <g><rect x="0" y="20" width="5" height="5"/><rect x="10" y="20" width="5" height="5"/></g>
+        <polyline points="0 40 5 40 5 45"/>
+    </svg>"#;
+    let shapes = Curve::all_from_svg_bytes(svg, "s.svg", "s", SvgShapes::Shapes).unwrap();
+    assert_eq!(
+        shapes.len(),
+        4,
+        "two subpaths and two rects; the open polyline is skipped"
+    );
+    assert_eq!(shapes[1].points.len(), 3);
+    // Only one top-level group: auto falls back to shapes.
+    let auto = Curve::all_from_svg_bytes(svg, "s.svg", "s", SvgShapes::Auto).unwrap();
+    assert_eq!(auto.len(), 4);
+    let groups = Curve::all_from_svg_bytes(svg, "s.svg", "s", SvgShapes::Groups).unwrap();
+    assert_eq!(groups.len(), 1);
+    assert_eq!(groups[0].name, "s group 2");
+    let e = Curve::all_from_svg_bytes(
+        br#"<svg xmlns="http://www.w3.org/2000/svg"><path d="M 0 0 L 1 0 L 2 0 Z"/></svg>"#,
+        "flat.svg",
+        "flat",
+        SvgShapes::Shapes,
+    )
+    .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "flat.svg (shape 1): all 3 points lie on one line (zero area); a curve must enclose a region"
+    );
+}
+
+/// The example of the README: `animate` on the timeline in
+/// curves/sequence, with hints at both ends of each stroke honoured and
+/// the speed carried through the two unheld keys.
+#[test]
+fn the_example_sequence_honours_its_hints_and_keeps_its_speed() {
+    let timeline = curve("sequence/ribbon-loops.json");
+    let out = immerse(&[
+        "animate",
+        "--timeline",
+        timeline.to_str().unwrap(),
+        "--json",
+        "-",
+        "-q",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let frames = v["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 157, "6 s at 24 fps and a 0.5 s hold");
+    let keys = v["keys"].as_array().unwrap();
+    assert_eq!(keys[3]["frame"], 144);
+    assert_eq!(keys[3]["hold"], 12);
+    let point = |f: usize, i: usize| {
+        let p = &frames[f]["points"][i];
+        Point::new(p[0].as_f64().unwrap(), p[1].as_f64().unwrap())
+    };
+    let spec: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&timeline).unwrap()).unwrap();
+    let n = frames[0]["points"].as_array().unwrap().len();
+    for name in ["a", "b"] {
+        // The vertex at hint `name` on key 1 is at it on every key
+        // (snapped to the curve's vertex within 0.1% of its size).
+        let at = |k: usize| {
+            let h = &spec["keys"][k]["hints"][name];
+            Point::new(h[0].as_f64().unwrap(), h[1].as_f64().unwrap())
+        };
+        let f0 = keys[0]["frame"].as_u64().unwrap() as usize;
+        let v0 = (0..n)
+            .min_by(|&i, &j| {
+                (point(f0, i) - at(0))
+                    .length()
+                    .total_cmp(&(point(f0, j) - at(0)).length())
+            })
+            .unwrap();
+        for k in 0..4 {
+            let f = keys[k]["frame"].as_u64().unwrap() as usize;
+            let d = (point(f, v0) - at(k)).length();
+            assert!(d < 0.5, "hint {name} on key {}: {d} away", k + 1);
+        }
+    }
+    for s in v["speeds"].as_array().unwrap() {
+        assert!(s["not_continuous"].is_null(), "{s}");
+        assert!(s["ratio"].as_f64().unwrap() <= 1.25, "{s}");
+    }
+}

@@ -5,13 +5,17 @@
 //! Run with `cargo run --release --example bench_tween` (optionally the
 //! vertex counts: `-- 500 2000 4000`).
 //!
-//! The pair is two spiral strips, 1.4 and 0.7 turns, whose triangulations
-//! differ, so the tween is staged (legs through target-shaped
-//! intermediates with flips between them); the frames are spread over the
-//! whole travel, so every leg is visited.
+//! Two pairs: two spiral strips (1.4 and 0.7 turns) whose triangulations
+//! are compatible, so the tween is one leg; and the drawings
+//! `curves/ribbon-curl.svg` → `curves/tail-loop.svg` with vertices
+//! inserted on their edges up to n, whose triangulations differ, so the
+//! tween is staged (legs through target-shaped intermediates with flips
+//! between them). The frames are spread over the whole travel, so every
+//! leg is visited.
 
-use immerse::Point;
+use immerse::correspond::insert_vertices;
 use immerse::morph::{CurveMorphOptions, Tween};
+use immerse::{Curve, Point};
 use std::f64::consts::TAU;
 use std::hint::black_box;
 use std::time::Instant;
@@ -53,11 +57,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "## Tween: time per frame (median of 5 runs over 100 frames spread over the travel)\n"
     );
-    println!("| vertices | planning (s) | flips | ms per frame | frames/s |");
-    println!("|---|---|---|---|---|");
-    for n in sizes {
-        let a = spiral_strip(n / 2, 1.4, 0.3);
-        let b = spiral_strip(n / 2, 0.7, 0.3);
+    println!("| pair | vertices | planning (s) | flips | ms per frame | frames/s |");
+    println!("|---|---|---|---|---|---|");
+    let ribbon = Curve::from_path("curves/ribbon-curl.svg")?.points;
+    let tail = Curve::from_path("curves/tail-loop.svg")?.points;
+    let pairs = sizes.iter().flat_map(|&n| {
+        let spirals = (
+            "spiral strips",
+            n,
+            spiral_strip(n / 2, 1.4, 0.3),
+            spiral_strip(n / 2, 0.7, 0.3),
+        );
+        let up = |p: &[Point]| insert_vertices(p, n.saturating_sub(p.len())).0;
+        let drawings = ("ribbon → tail", n, up(&ribbon), up(&tail));
+        [spirals, drawings]
+    });
+    for (what, n, a, b) in pairs {
         let start = Instant::now();
         let tween = Tween::new(&a, &b, &CurveMorphOptions::DEFAULT)?;
         let planning = start.elapsed().as_secs_f64();
@@ -75,7 +90,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .collect();
         let per = median(runs);
         println!(
-            "| {n} | {planning:.3} | {} | {:.3} | {:.0} |",
+            "| {what} | {n} | {planning:.3} | {} | {:.3} | {:.0} |",
             tween.report().flips,
             per * 1e3,
             1.0 / per

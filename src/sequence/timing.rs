@@ -303,7 +303,7 @@ pub(super) fn schedule(
             }
             if j > 0 && timing.keys[j - 1].duration.is_some() {
                 return Err(err(format!(
-                    "{who}: both its time and the duration of the segment before it (on {}) are given; give one of them",
+                    "{who}: its time and a duration on the key before it ({}) both time the segment between them; give one of them",
                     key_label(names, j - 1)
                 )));
             }
@@ -340,7 +340,7 @@ pub(super) fn schedule(
         match (known[m - 1], end) {
             (Some(f), Some(e)) if f != e => {
                 return Err(err(format!(
-                    "{total} frames do not fit the timing, which ends {} at frame {f} ({} frames in all); leave out the frame count or change the times",
+                    "{total} frames do not fit the timing: {} is at frame {f}, so the sequence has {} frames; leave out the frame count or change the times",
                     key_label(names, m - 1),
                     f + holds[m - 1] + 1
                 )));
@@ -426,7 +426,7 @@ pub(super) fn schedule(
             }
             _ => {
                 return Err(err(format!(
-                    "{}: there are too few frames between {} (frame {fa}) and it (frame {fb}) for {} segment(s) and the holds; give it a later time or a higher fps",
+                    "{}: at frame {fb} it leaves too few frames after {} at frame {fa} for {} segment(s) of at least one step and their holds; give it a later time or a higher fps",
                     key_label(names, b),
                     key_label(names, a),
                     b - a

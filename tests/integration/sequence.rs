@@ -279,6 +279,9 @@ fn hints_are_honoured_exactly() {
             h.name
         );
         assert!((end.points[h.vertex] - h.to).length() <= tol, "{}", h.name);
+        // In fact exactly: the tween's ends are its keys.
+        assert_eq!(start.points[h.vertex], h.from, "{}", h.name);
+        assert_eq!(end.points[h.vertex], h.to, "{}", h.name);
         // The hint's own point: on the curve where it was given.
         let given = hints.iter().find(|g| g.name == h.name).unwrap();
         for (at, point, k) in [(given.from, h.from, s), (given.to, h.to, s + 1)] {
@@ -671,4 +674,133 @@ fn the_example_sequence_honours_its_hints_and_keeps_its_speed() {
         assert!(s["not_continuous"].is_null(), "{s}");
         assert!(s["ratio"].as_f64().unwrap() <= 1.25, "{s}");
     }
+}
+
+/// Every other bad timeline or `animate` option: exit 2 (exit 1 for a key
+/// that is not self-overlapping) and one line naming the file, the key and
+/// the field (docs/bad-input.md).
+#[test]
+fn animate_timeline_errors_name_the_key_and_the_field() {
+    let dir = timeline_dir();
+    std::fs::copy(
+        curve("figure-eight-n64.json"),
+        dir.path().join("eight.json"),
+    )
+    .unwrap();
+    std::fs::copy(curve("letter-C.svg"), dir.path().join("c.svg")).unwrap();
+    let d = Some(dir.path());
+    let cases: [(&str, &str, i32, &str); 10] = [
+        (
+            "field.json",
+            r#"{"keys": ["curl-strip-n10.json", {"curve": "circular-strip-450deg-n60.json", "durration": 1}]}"#,
+            2,
+            "key 2: unknown field 'durration'; expected curve, shape, time, duration, hold, easing, hints",
+        ),
+        (
+            "shape.json",
+            r#"{"keys": ["curl-strip-n10.json", {"curve": "c.svg", "shape": 2}]}"#,
+            2,
+            "key 2: shape 2 does not exist; c.svg has 1 shape(s) as keys",
+        ),
+        (
+            "both.json",
+            r#"{"keys": [{"curve": "curl-strip-n10.json", "duration": 1}, {"curve": "circular-strip-450deg-n60.json", "time": 2}]}"#,
+            2,
+            "key 2 (circular-strip-450deg-n60.json): its time and a duration on the key before it (key 1 (curl-strip-n10.json)) both time the segment between them; give one of them",
+        ),
+        (
+            "last.json",
+            r#"{"keys": ["curl-strip-n10.json", {"curve": "circular-strip-450deg-n60.json", "duration": 1}]}"#,
+            2,
+            "key 2 (circular-strip-450deg-n60.json): the last key has no segment after it, so a duration 1 means nothing; remove it",
+        ),
+        (
+            "early.json",
+            r#"{"keys": ["curl-strip-n10.json", {"curve": "circular-strip-450deg-n60.json", "time": 0.01}]}"#,
+            2,
+            "key 2 (circular-strip-450deg-n60.json): at frame 0 it leaves too few frames after key 1 (curl-strip-n10.json) at frame 0 for 1 segment(s) of at least one step and their holds; give it a later time or a higher fps",
+        ),
+        (
+            "count.json",
+            r#"{"frames": 10, "keys": ["curl-strip-n10.json", {"curve": "circular-strip-450deg-n60.json", "time": 1}]}"#,
+            2,
+            "10 frames do not fit the timing: key 2 (circular-strip-450deg-n60.json) is at frame 30, so the sequence has 31 frames; leave out the frame count or change the times",
+        ),
+        (
+            "hold.json",
+            r#"{"keys": ["curl-strip-n10.json", {"curve": "circular-strip-450deg-n60.json", "hold": -0.5}]}"#,
+            2,
+            "key 2 (circular-strip-450deg-n60.json): hold -0.5 is not a number of seconds of at least 0",
+        ),
+        (
+            "easing.json",
+            r#"{"keys": ["curl-strip-n10.json", {"curve": "circular-strip-450deg-n60.json", "easing": "bounce"}]}"#,
+            2,
+            "key 2: invalid easing 'bounce': unknown name; expected linear, ease, ease-in, ease-out, ease-in-out or cubic-bezier(x1,y1,x2,y2) with x1 and x2 in [0,1]",
+        ),
+        (
+            "drawing.json",
+            r#"{"keys": "c.svg"}"#,
+            2,
+            "c.svg: 1 closed shape found; a sequence needs at least 2 keys: draw each key as its own shape, group or layer",
+        ),
+        (
+            "eight.json.timeline",
+            r#"{"keys": ["curl-strip-n10.json", "eight.json"]}"#,
+            1,
+            "key 2 (eight.json) is not self-overlapping: turning number is 0, not 1",
+        ),
+    ];
+    for (file, text, code, message) in cases {
+        write(dir.path(), file, text);
+        assert_stderr(
+            d,
+            &["animate", "--timeline", file, "-q"],
+            code,
+            &format!("immerse: {file}: {message}"),
+        );
+    }
+    write(dir.path(), "bad.json", "{\"keys\": [\n");
+    assert_stderr(
+        d,
+        &["animate", "--timeline", "bad.json"],
+        2,
+        "immerse: bad.json: 2:0: invalid JSON: EOF while parsing a list",
+    );
+    assert_stderr(
+        d,
+        &["animate", "--timeline", "nowhere.json"],
+        2,
+        "immerse: cannot read nowhere.json (check the path and permissions): No such file or directory (os error 2)",
+    );
+    let two = [
+        "animate",
+        "curl-strip-n10.json",
+        "circular-strip-450deg-n60.json",
+    ];
+    for (flag, value, message) in [
+        (
+            "--hold",
+            "-1",
+            "--hold -1 is not a number of seconds of at least 0",
+        ),
+        (
+            "--fps",
+            "0",
+            "--fps 0 is not a rate above 0 and at most 1000 frames per second",
+        ),
+    ] {
+        let mut args = two.to_vec();
+        args.extend([flag, value]);
+        assert_stderr(d, &args, 2, &format!("immerse: {message}"));
+    }
+    let mut args = two.to_vec();
+    args.extend(["--json", "out.json"]);
+    write(dir.path(), "out.json", "{}");
+    assert_stderr(
+        d,
+        &args,
+        2,
+        "immerse: out.json exists; pass --force to replace it",
+    );
 }

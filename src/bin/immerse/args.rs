@@ -118,7 +118,7 @@ pub(crate) struct AnimateArgs {
     pub(crate) frames: Option<u32>,
     /// Frames per second of the timing and of a GIF or animated SVG
     /// (default: the timeline's, else 30).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub(crate) fps: Option<f64>,
     /// Easing of every segment without its own: linear keeps the speed
     /// through the keys, ease-in-out stops at each; also ease-in, ease-out,
@@ -127,7 +127,7 @@ pub(crate) struct AnimateArgs {
     pub(crate) easing: Option<String>,
     /// Seconds every key between the first and the last holds still
     /// (keys without their own hold).
-    #[arg(long, value_name = "SECONDS")]
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
     pub(crate) hold: Option<f64>,
     /// How each triangle's third vertex travels.
     #[arg(long, value_enum, default_value_t = PathArg::Hybrid)]

@@ -45,6 +45,11 @@ pub(crate) fn run(args: &AnimateArgs) -> anyhow::Result<Outcome> {
     {
         anyhow::bail!("--hold {h} is not a number of seconds of at least 0");
     }
+    if let Some(fps) = args.fps
+        && !(fps.is_finite() && fps > 0.0 && fps <= 1000.0)
+    {
+        anyhow::bail!("--fps {fps} is not a rate above 0 and at most 1000 frames per second");
+    }
     let svg_mode = args.svg_keys.map(SvgShapes::from);
     // Where the keys come from, and the prefix of messages about them.
     let (tl, prefix) = match &args.timeline {
@@ -269,6 +274,8 @@ fn read_keys(tl: &Timeline, mode: SvgShapes, prefix: &str) -> anyhow::Result<Vec
     for (j, spec) in tl.keys.iter().enumerate() {
         let at = format!("{prefix}key {}", j + 1);
         let (name, curve) = match spec.shape {
+            // Named on the command line, the file names itself.
+            None if prefix.is_empty() => (spec.curve_text.clone(), Curve::from_path(&spec.curve)?),
             None => {
                 let c = Curve::from_path(&spec.curve).with_context(|| at.clone())?;
                 (spec.curve_text.clone(), c)

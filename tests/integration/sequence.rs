@@ -664,8 +664,8 @@ fn the_example_sequence_honours_its_hints_and_keeps_its_speed() {
                     .total_cmp(&(point(f0, j) - at(0)).length())
             })
             .unwrap();
-        for k in 0..4 {
-            let f = keys[k]["frame"].as_u64().unwrap() as usize;
+        for (k, key) in keys.iter().enumerate() {
+            let f = key["frame"].as_u64().unwrap() as usize;
             let d = (point(f, v0) - at(k)).length();
             assert!(d < 0.5, "hint {name} on key {}: {d} away", k + 1);
         }

@@ -285,14 +285,12 @@ impl Sequence {
                         }
                     }
                     CurveMorphError::Morph(source) => SequenceError::Morph { key: s + 1, source },
-                    other => SequenceError::Morph {
-                        key: s + 1,
-                        source: MorphError::InvalidFrame {
-                            t: 0.0,
-                            path: ThirdVertexPath::Hybrid,
-                            defect: other.to_string(),
-                        },
-                    },
+                    // Planning asks for no fractions; nothing else is left.
+                    other => SequenceError::Timing(format!(
+                        "segment from key {} to key {}: {other}",
+                        s + 1,
+                        s + 2
+                    )),
                 })
             })
             .collect::<Result<_, _>>()?;

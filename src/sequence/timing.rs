@@ -494,7 +494,7 @@ fn share(w: &[f64], budget: usize) -> Vec<usize> {
     let mut heap: std::collections::BinaryHeap<(Ordered, std::cmp::Reverse<usize>)> = w
         .iter()
         .enumerate()
-        .map(|(i, &x)| (Ordered(x / 1.0), std::cmp::Reverse(i)))
+        .map(|(i, &x)| (Ordered(x), std::cmp::Reverse(i)))
         .collect();
     while left > 0 {
         let Some((_, std::cmp::Reverse(i))) = heap.pop() else {

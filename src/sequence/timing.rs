@@ -572,7 +572,7 @@ mod tests {
         let e = schedule(&[1.0, 1.0], &t, &names(3)).unwrap_err();
         assert!(
             e.to_string()
-                .starts_with("key 3 (k3): there are too few frames"),
+                .starts_with("key 3 (k3): at frame 0 it leaves too few frames"),
             "{e}"
         );
     }

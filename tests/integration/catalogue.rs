@@ -161,9 +161,9 @@ fn usage_errors() {
             ),
         ),
         (
-            &["frobnicate"],
+            &["xyzzy"],
             format!(
-                "error: unrecognized subcommand 'frobnicate'\n\nUsage: immerse <COMMAND>{more}"
+                "error: unrecognized subcommand 'xyzzy'\n\nUsage: immerse <COMMAND>{more}"
             ),
         ),
         (

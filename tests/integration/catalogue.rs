@@ -162,9 +162,7 @@ fn usage_errors() {
         ),
         (
             &["xyzzy"],
-            format!(
-                "error: unrecognized subcommand 'xyzzy'\n\nUsage: immerse <COMMAND>{more}"
-            ),
+            format!("error: unrecognized subcommand 'xyzzy'\n\nUsage: immerse <COMMAND>{more}"),
         ),
         (
             &["check", tri, "--bogus"],

@@ -1,13 +1,15 @@
 //! Criterion benchmarks of frame generation: one frame of the compatible
 //! propagation morph per path at n = 1,000 and 10,000 vertices, and the
 //! end-to-end curve morph (triangulation, both flip sides, 60 checked
-//! frames) at n = 100 and 400.
+//! frames) at n = 100 and 400, and one frame of a planned `Tween` (layout
+//! and exact check) at n = 500 and 2000.
 //!
-//! Run `cargo bench --bench morph` (filter with e.g. `-- frame/hybrid`).
+//! Run `cargo bench --bench morph` (filter with e.g. `-- frame/hybrid` or
+//! `-- tween`).
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use immerse::Point;
-use immerse::morph::{Compatible, CurveMorphOptions, ThirdVertexPath, morph_curves};
+use immerse::morph::{Compatible, CurveMorphOptions, ThirdVertexPath, Tween, morph_curves};
 use immerse::tree::RootChoice;
 use std::f64::consts::TAU;
 use std::hint::black_box;
@@ -56,6 +58,23 @@ fn frames(c: &mut Criterion) {
         let fr: Vec<f64> = (0..60).map(|i| f64::from(i) / 59.0).collect();
         g.bench_function(BenchmarkId::from_parameter(2 * m), |bench| {
             bench.iter(|| black_box(morph_curves(&a, &b, &fr, &CurveMorphOptions::DEFAULT).is_ok()))
+        });
+    }
+    g.finish();
+    // One frame of a planned (staged) tween: the pair needs flips, so the
+    // frames cross legs; t steps through the travel.
+    let mut g = c.benchmark_group("tween");
+    g.sample_size(20);
+    for n in [500usize, 2000] {
+        let (a, _) = spiral_strip(n / 2, 1.4, 0.3);
+        let (b, _) = spiral_strip(n / 2, 0.7, 0.3);
+        let tween = Tween::new(&a, &b, &CurveMorphOptions::DEFAULT).expect("a valid pair");
+        let mut i = 0u32;
+        g.bench_with_input(BenchmarkId::from_parameter(n), &tween, |bench, tween| {
+            bench.iter(|| {
+                i = (i + 1) % 97;
+                black_box(tween.frame(f64::from(i) / 96.0).is_ok())
+            })
         });
     }
     g.finish();

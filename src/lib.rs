@@ -70,6 +70,7 @@ pub mod immersion;
 pub mod mesh_morph;
 pub mod morph;
 pub mod quality;
+pub mod sequence;
 mod solve;
 pub mod tiling;
 pub mod tree;

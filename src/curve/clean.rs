@@ -61,13 +61,22 @@ pub(crate) fn build(
     }
     let total = raw.len();
     let mut points: Vec<Point> = Vec::with_capacity(total);
+    // The cleaned vertex each point as read became (before reversal).
+    let mut source_vertex: Vec<usize> = Vec::with_capacity(total);
     for (p, _) in raw {
         if points.last() != Some(&p) {
             points.push(p);
         }
+        source_vertex.push(points.len() - 1);
     }
     while points.len() > 1 && points.first() == points.last() {
+        // A closing point equal to the first: the points it absorbed are
+        // the first vertex.
+        let last = points.len() - 1;
         points.pop();
+        for v in source_vertex.iter_mut().filter(|v| **v == last) {
+            *v = 0;
+        }
     }
     let dropped = total - points.len();
     let mut distinct = points.clone();
@@ -93,6 +102,10 @@ pub(crate) fn build(
     let reversed = turning_as_given == Turning::Number(-1);
     if reversed {
         points[1..].reverse();
+        let n = points.len();
+        for v in &mut source_vertex {
+            *v = (n - *v) % n;
+        }
     }
     Ok(Curve {
         name,
@@ -100,6 +113,7 @@ pub(crate) fn build(
         reversed,
         turning_as_given,
         dropped,
+        source_vertex,
     })
 }
 
@@ -142,6 +156,41 @@ mod tests {
         assert_eq!(c.points[0], Point::new(0., 0.));
         assert_eq!(c.points[1], Point::new(1., 0.));
         assert_eq!(c.turning_number(), Some(1));
+    }
+
+    #[test]
+    fn source_points_map_to_their_cleaned_vertices() {
+        // Repeated points, a closing point, and a reversal.
+        let c = build(
+            "cw".into(),
+            raw(&[
+                (0., 0.),
+                (0., 1.),
+                (0., 1.),
+                (1., 1.),
+                (1., 0.),
+                (0., 0.),
+                (0., 0.),
+            ]),
+            false,
+            "cw",
+        )
+        .unwrap();
+        assert!(c.reversed);
+        assert_eq!(c.source_vertex.len(), 7);
+        let raw_pts = [
+            (0., 0.),
+            (0., 1.),
+            (0., 1.),
+            (1., 1.),
+            (1., 0.),
+            (0., 0.),
+            (0., 0.),
+        ];
+        for (r, &(x, y)) in raw_pts.iter().enumerate() {
+            assert_eq!(c.points[c.source_vertex[r]], Point::new(x, y), "point {r}");
+        }
+        assert_eq!(c.source_vertex, vec![0, 3, 3, 2, 1, 0, 0]);
     }
 
     #[test]

@@ -25,7 +25,7 @@ mod text;
 
 pub use clean::{MAX_COORDINATE, MAX_POINTS, MIN_COORDINATE};
 pub use error::CurveError;
-pub use svg::{MAX_SVG_PATH_NUMBER, SVG_FLATTEN_TOLERANCE};
+pub use svg::{MAX_SVG_PATH_NUMBER, MAX_SVG_SHAPES, SVG_FLATTEN_TOLERANCE, SvgShapes};
 
 use crate::geom::Point;
 use crate::geom::polygon::{self, Turning};
@@ -51,6 +51,10 @@ pub struct Curve {
     /// How many points cleaning dropped (a repeated closing point and
     /// consecutive duplicates).
     pub dropped: usize,
+    /// For each point as read (counting from 0, before cleaning), the
+    /// vertex of [`Curve::points`] it became: a dropped duplicate maps to
+    /// the vertex it repeats, and the order follows any reversal.
+    pub source_vertex: Vec<usize>,
 }
 
 impl Curve {
@@ -127,6 +131,78 @@ impl Curve {
         };
         let name = raw.name.unwrap_or_else(|| default_name.to_string());
         clean::build(name, raw.points, raw.lines, label)
+    }
+
+    /// Reads every closed shape of an SVG drawing that `mode` picks, in
+    /// document order, each cleaned and oriented as [`Curve::from_path`]
+    /// does: the keyframes of a sequence drawn in one file. Each curve's
+    /// name is the file stem and what names the shape in the drawing
+    /// (`shape 2`, `group 'layer3'`); errors name the file and the shape.
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::from_path`]; [`CurveError::TooLarge`] for more than
+    /// [`MAX_SVG_SHAPES`] shapes.
+    pub fn all_from_svg_path(
+        path: impl AsRef<Path>,
+        mode: SvgShapes,
+    ) -> Result<Vec<Curve>, CurveError> {
+        let path = path.as_ref();
+        let label = path.display().to_string();
+        let io = |source| CurveError::Io {
+            path: label.clone(),
+            source,
+        };
+        let meta = std::fs::metadata(path).map_err(io)?;
+        if meta.is_dir() {
+            return Err(CurveError::IsDirectory { path: label });
+        }
+        if meta.len() > MAX_FILE_BYTES {
+            return Err(CurveError::TooLarge {
+                path: label,
+                what: format!("{} bytes", meta.len()),
+                limit: format!("{MAX_FILE_BYTES} bytes"),
+            });
+        }
+        let bytes = std::fs::read(path).map_err(io)?;
+        let stem = path
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("drawing")
+            .to_string();
+        Curve::all_from_svg_bytes(&bytes, &label, &stem, mode)
+    }
+
+    /// [`Curve::all_from_svg_path`] on data in memory; `label` names the
+    /// source in errors and `stem` starts each curve's name.
+    ///
+    /// # Errors
+    ///
+    /// As [`Curve::all_from_svg_path`], except the I/O errors.
+    pub fn all_from_svg_bytes(
+        bytes: &[u8],
+        label: &str,
+        stem: &str,
+        mode: SvgShapes,
+    ) -> Result<Vec<Curve>, CurveError> {
+        if bytes.len() as u64 > MAX_FILE_BYTES {
+            return Err(CurveError::TooLarge {
+                path: label.to_string(),
+                what: format!("{} bytes", bytes.len()),
+                limit: format!("{MAX_FILE_BYTES} bytes"),
+            });
+        }
+        svg::parse_all(bytes, label, mode)?
+            .into_iter()
+            .map(|(what, raw)| {
+                clean::build(
+                    format!("{stem} {what}"),
+                    raw.points,
+                    raw.lines,
+                    &format!("{label} ({what})"),
+                )
+            })
+            .collect()
     }
 
     /// Parses a JSON curve from a string (see the module docs for the

@@ -48,18 +48,13 @@ enum Seg {
 }
 
 pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
-    screen(bytes, label)?;
-    let tree =
-        usvg::Tree::from_data(bytes, &usvg::Options::default()).map_err(|e| CurveError::Svg {
-            path: label.to_string(),
-            message: one_line(&e.to_string()),
-        })?;
-    let mut found = None;
-    find_closed(tree.root(), Some(OUTLINE_ID), &mut found);
-    if found.is_none() {
-        find_closed(tree.root(), None, &mut found);
+    let tree = load(bytes, label)?;
+    let mut found = Vec::new();
+    collect_closed(tree.root(), Some(OUTLINE_ID), &mut found, 1);
+    if found.is_empty() {
+        collect_closed(tree.root(), None, &mut found, 1);
     }
-    let Some((start, segs)) = found else {
+    let Some((start, segs)) = found.pop() else {
         if transforms_hide_a_shape(bytes) {
             return Err(CurveError::SvgOutOfRange {
                 path: label.to_string(),
@@ -69,8 +64,106 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
             path: label.to_string(),
         });
     };
+    Ok(flatten(start, &segs))
+}
+
+/// Which closed shapes of an SVG drawing become curves when one drawing
+/// holds several (a sequence of keyframes drawn in one file).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SvgShapes {
+    /// Each top-level group (an Inkscape layer is one) when there are at
+    /// least two that hold a closed shape, else each closed shape.
+    #[default]
+    Auto,
+    /// Every closed subpath of every shape, in document order.
+    Shapes,
+    /// The first closed subpath of each top-level group, in document
+    /// order. A group that is alone at its level (such as the one a
+    /// `viewBox` or a wrapping `<g>` makes) is looked into.
+    Groups,
+}
+
+/// Most curves one drawing may yield.
+pub const MAX_SVG_SHAPES: usize = 1000;
+
+/// Every closed shape of a drawing as chosen by `mode`, each with what
+/// names it in the drawing: `shape K` (counting from 1) or `group 'ID'`
+/// (`group K` when the group has no id).
+pub(crate) fn parse_all(
+    bytes: &[u8],
+    label: &str,
+    mode: SvgShapes,
+) -> Result<Vec<(String, RawCurve)>, CurveError> {
+    let tree = load(bytes, label)?;
+    let shapes = |tree: &usvg::Tree| {
+        let mut found = Vec::new();
+        collect_closed(tree.root(), None, &mut found, MAX_SVG_SHAPES + 1);
+        found
+            .into_iter()
+            .enumerate()
+            .map(|(k, (start, segs))| (format!("shape {}", k + 1), flatten(start, &segs)))
+            .collect::<Vec<_>>()
+    };
+    let groups = |tree: &usvg::Tree| {
+        let mut level = tree.root();
+        while let [usvg::Node::Group(g)] = level.children() {
+            level = g;
+        }
+        let mut out = Vec::new();
+        for (k, node) in level.children().iter().enumerate() {
+            let usvg::Node::Group(g) = node else {
+                continue;
+            };
+            let mut found = Vec::new();
+            collect_closed(g, None, &mut found, 1);
+            if let Some((start, segs)) = found.pop() {
+                let name = if g.id().is_empty() {
+                    format!("group {}", k + 1)
+                } else {
+                    format!("group '{}'", one_line(g.id()))
+                };
+                out.push((name, flatten(start, &segs)));
+            }
+        }
+        out
+    };
+    let found = match mode {
+        SvgShapes::Shapes => shapes(&tree),
+        SvgShapes::Groups => groups(&tree),
+        SvgShapes::Auto => {
+            let g = groups(&tree);
+            if g.len() >= 2 { g } else { shapes(&tree) }
+        }
+    };
+    if found.is_empty() {
+        return Err(CurveError::NoClosedShape {
+            path: label.to_string(),
+        });
+    }
+    if found.len() > MAX_SVG_SHAPES {
+        return Err(CurveError::TooLarge {
+            path: label.to_string(),
+            what: format!("more than {MAX_SVG_SHAPES} closed shapes"),
+            limit: format!("{MAX_SVG_SHAPES} shapes"),
+        });
+    }
+    Ok(found)
+}
+
+/// Screens and parses a drawing.
+fn load(bytes: &[u8], label: &str) -> Result<usvg::Tree, CurveError> {
+    screen(bytes, label)?;
+    usvg::Tree::from_data(bytes, &usvg::Options::default()).map_err(|e| CurveError::Svg {
+        path: label.to_string(),
+        message: one_line(&e.to_string()),
+    })
+}
+
+/// Flattens one closed subpath (already mapped by its transform) and
+/// flips y.
+fn flatten(start: Point, segs: &[Seg]) -> RawCurve {
     let (mut lo, mut hi) = (start, start);
-    for s in &segs {
+    for s in segs {
         let pts: &[Point] = match s {
             Seg::Line(a) => &[*a],
             Seg::Quad(a, b) => &[*a, *b],
@@ -84,7 +177,7 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
     let tol = (SVG_FLATTEN_TOLERANCE * (hi - lo).length()).max(f64::MIN_POSITIVE);
     let mut points = vec![start];
     let mut cur = start;
-    for s in segs {
+    for &s in segs {
         match s {
             Seg::Line(p) => points.push(p),
             Seg::Quad(c, p) => {
@@ -121,11 +214,11 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
         .enumerate()
         .map(|(i, p)| (Point::new(p.x, -p.y), i))
         .collect();
-    Ok(RawCurve {
+    RawCurve {
         name: None,
         points,
         lines: false,
-    })
+    }
 }
 
 /// Refuses, before usvg sees them, inputs that would make it do unbounded
@@ -207,9 +300,9 @@ fn transforms_hide_a_shape(bytes: &[u8]) -> bool {
     let Ok(tree) = usvg::Tree::from_data(plain.as_bytes(), &usvg::Options::default()) else {
         return false;
     };
-    let mut found = None;
-    find_closed(tree.root(), None, &mut found);
-    found.is_some()
+    let mut found = Vec::new();
+    collect_closed(tree.root(), None, &mut found, 1);
+    !found.is_empty()
 }
 
 /// The largest magnitude among the numbers in SVG path data (NaN-free;
@@ -277,15 +370,22 @@ fn segments_for(m: f64, tol: f64) -> usize {
     }
 }
 
-/// The first closed subpath in document order of a path whose id is `only`
-/// (any path but the background when `None`).
-fn find_closed(group: &usvg::Group, only: Option<&str>, found: &mut Option<(Point, Vec<Seg>)>) {
+/// Collects closed subpaths in document order, at most `limit`, of the
+/// paths whose id is `only` (of every path but the background when
+/// `None`): a subpath that ends with `Z`, or whose last point equals its
+/// first.
+fn collect_closed(
+    group: &usvg::Group,
+    only: Option<&str>,
+    found: &mut Vec<(Point, Vec<Seg>)>,
+    limit: usize,
+) {
     for node in group.children() {
-        if found.is_some() {
+        if found.len() >= limit {
             return;
         }
         match node {
-            usvg::Node::Group(g) => find_closed(g, only, found),
+            usvg::Node::Group(g) => collect_closed(g, only, found, limit),
             usvg::Node::Path(path)
                 if only.map_or(path.id() != BACKGROUND_ID, |id| path.id() == id) =>
             {
@@ -304,14 +404,16 @@ fn find_closed(group: &usvg::Group, only: Option<&str>, found: &mut Option<(Poin
                     use usvg::tiny_skia_path::PathSegment as S;
                     match seg {
                         S::MoveTo(p) => {
-                            // An open subpath ends here; a closed one would
-                            // have returned already.
+                            // A subpath that returned to its start is
+                            // closed; an open one is skipped.
                             if let Some(s) = start
                                 && !segs.is_empty()
                                 && last == s
                             {
-                                *found = Some((s, segs));
-                                return;
+                                found.push((s, std::mem::take(&mut segs)));
+                                if found.len() >= limit {
+                                    return;
+                                }
                             }
                             start = Some(map(p));
                             last = map(p);
@@ -333,8 +435,11 @@ fn find_closed(group: &usvg::Group, only: Option<&str>, found: &mut Option<(Poin
                             if let Some(s) = start
                                 && !segs.is_empty()
                             {
-                                *found = Some((s, segs));
-                                return;
+                                found.push((s, std::mem::take(&mut segs)));
+                                if found.len() >= limit {
+                                    return;
+                                }
+                                last = s;
                             }
                         }
                     }
@@ -343,8 +448,7 @@ fn find_closed(group: &usvg::Group, only: Option<&str>, found: &mut Option<(Poin
                     && !segs.is_empty()
                     && last == s
                 {
-                    *found = Some((s, segs));
-                    return;
+                    found.push((s, segs));
                 }
             }
             _ => {}

@@ -213,7 +213,13 @@ impl Tween {
         self.frame_with_fallback(t).map(|(f, _)| f)
     }
 
-    fn frame_with_fallback(&self, t: f64) -> Result<(Frame, Option<Fallback>), MorphError> {
+    /// [`Tween::frame`] with the fallback it took, if any (another path
+    /// for this frame), as [`Tween::morph`] collects them.
+    ///
+    /// # Errors
+    ///
+    /// As [`Tween::frame`].
+    pub fn frame_with_fallback(&self, t: f64) -> Result<(Frame, Option<Fallback>), MorphError> {
         if !(0.0..=1.0).contains(&t) {
             return Err(MorphError::Fraction(t));
         }

@@ -161,10 +161,8 @@ fn usage_errors() {
             ),
         ),
         (
-            &["frobnicate"],
-            format!(
-                "error: unrecognized subcommand 'frobnicate'\n\nUsage: immerse <COMMAND>{more}"
-            ),
+            &["xyzzy"],
+            format!("error: unrecognized subcommand 'xyzzy'\n\nUsage: immerse <COMMAND>{more}"),
         ),
         (
             &["check", tri, "--bogus"],

@@ -14,5 +14,6 @@ mod morph;
 mod outputs;
 mod pairs;
 mod properties;
+mod sequence;
 mod stress;
 mod util;

@@ -72,6 +72,112 @@ pub(crate) enum Command {
     /// but never files it did not write.
     #[command(after_help = "Examples:\n  immerse demo\n  immerse demo -o /tmp/show --frames 48")]
     Demo(DemoArgs),
+    /// Animate a keyframe sequence K1 → K2 → K3 … of self-overlapping curves.
+    ///
+    /// Vertex counts are equalised once across all keys (original vertices
+    /// stay exact), shape hints from a timeline file are honoured exactly,
+    /// and frames are placed by vertex travel across the whole sequence so
+    /// the motion carries through a key unless it holds or its easing
+    /// stops there. Every frame is checked exactly to be an immersed disk.
+    /// Prints the speed ratio at each key. The timeline file format is in
+    /// docs/timeline.md.
+    #[command(
+        after_help = "Examples:\n  immerse animate a.svg b.svg c.svg -o seq.gif\n  immerse animate keys.svg --frames 90 --json seq.json\n  immerse animate --timeline curves/sequence/ribbon-loops.json -o seq.gif -o sheet.png"
+    )]
+    Animate(AnimateArgs),
+}
+
+/// Which shapes of one SVG drawing are the keys.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum SvgKeysArg {
+    /// Top-level groups (Inkscape layers) when there are two or more, else each closed shape.
+    Auto,
+    /// Each closed shape, in document order.
+    Shapes,
+    /// The first closed shape of each top-level group or layer.
+    Groups,
+}
+
+/// Arguments of `immerse animate`.
+#[derive(Debug, Args)]
+pub(crate) struct AnimateArgs {
+    /// The keys in order: two or more curve files, or one SVG drawing
+    /// whose shapes (or groups, or layers) are the keys.
+    #[arg(value_name = "KEY", required_unless_present = "timeline")]
+    pub(crate) keys: Vec<PathBuf>,
+    /// A timeline file (JSON): keys with times or durations, holds,
+    /// easings, loop and shape hints (see docs/timeline.md).
+    #[arg(long, value_name = "FILE", conflicts_with = "keys")]
+    pub(crate) timeline: Option<PathBuf>,
+    /// Which shapes of an SVG drawing are the keys (default auto).
+    #[arg(long, value_enum)]
+    pub(crate) svg_keys: Option<SvgKeysArg>,
+    /// Frames over the whole sequence, holds included (default: the
+    /// timeline's, else 2 seconds per segment at --fps).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(2..=100_000))]
+    pub(crate) frames: Option<u32>,
+    /// Frames per second of the timing and of a GIF or animated SVG
+    /// (default: the timeline's, else 30).
+    #[arg(long, allow_negative_numbers = true)]
+    pub(crate) fps: Option<f64>,
+    /// Easing of every segment without its own: linear keeps the speed
+    /// through the keys, ease-in-out stops at each; also ease-in, ease-out,
+    /// cubic-bezier(x1,y1,x2,y2).
+    #[arg(long)]
+    pub(crate) easing: Option<String>,
+    /// Seconds every key between the first and the last holds still
+    /// (keys without their own hold).
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
+    pub(crate) hold: Option<f64>,
+    /// How each triangle's third vertex travels.
+    #[arg(long, value_enum, default_value_t = PathArg::Hybrid)]
+    pub(crate) path: PathArg,
+    /// Triangulation quality of each key.
+    #[arg(long, value_enum, default_value_t = QualityArg::Delaunay)]
+    pub(crate) quality: QualityArg,
+    /// Where incompatible keys change triangulation on the way.
+    #[arg(long, value_enum, default_value_t = IntermediateArg::Target)]
+    pub(crate) intermediate: IntermediateArg,
+    /// How vertices of consecutive keys without shape hints are matched.
+    #[arg(long, value_enum, default_value_t = CorrespondenceArg::MinFlips)]
+    pub(crate) correspondence: CorrespondenceArg,
+    /// Write every frame as JSON (the format of morph --json, with the
+    /// keys' frame numbers and the speeds at them) to FILE; bare --json,
+    /// "-" or /dev/stdout print it on stdout.
+    #[arg(long, value_name = "FILE", num_args = 0..=1, default_missing_value = "-")]
+    pub(crate) json: Option<PathBuf>,
+    /// Write images (may be given more than once): a folder for PNG or
+    /// SVG frame sequences, or a .gif, .svg (animated) or .png (contact
+    /// sheet, one row per segment) file.
+    #[arg(short, long, value_name = "PATH")]
+    pub(crate) output: Vec<PathBuf>,
+    /// Image format of every -o; by default from each one's extension.
+    #[arg(long, value_enum)]
+    pub(crate) format: Option<FormatArg>,
+    /// Image size in pixels, WIDTHxHEIGHT (a contact sheet's cell size).
+    #[arg(long, value_name = "WxH", default_value = "600x600", value_parser = parse_size)]
+    pub(crate) size: (u32, u32),
+    /// In-betweens per segment on a contact sheet, besides the two keys.
+    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(0..=50))]
+    pub(crate) sheet_inbetweens: u32,
+    /// Play the animation forwards then backwards, repeating.
+    #[arg(long, conflicts_with = "once")]
+    pub(crate) ping_pong: bool,
+    /// Play the animation once instead of looping.
+    #[arg(long)]
+    pub(crate) once: bool,
+    /// Draw the triangulation's edges in images.
+    #[arg(long)]
+    pub(crate) wireframe: bool,
+    /// Draw the first and last key faintly behind every frame.
+    #[arg(long)]
+    pub(crate) onion: bool,
+    /// Replace existing output files (and write into a non-empty folder).
+    #[arg(long)]
+    pub(crate) force: bool,
+    /// No progress bars or notices on stderr.
+    #[arg(short, long)]
+    pub(crate) quiet: bool,
 }
 
 /// Mesh morph method.

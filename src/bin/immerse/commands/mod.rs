@@ -1,6 +1,7 @@
 //! One module per subcommand: each turns its arguments into library
 //! options, runs, and reports. Shared glue lives here.
 
+mod animate;
 mod check;
 mod demo;
 mod mesh_morph;
@@ -23,6 +24,7 @@ pub(crate) fn run(cli: Cli) -> anyhow::Result<Outcome> {
         Command::Morph(args) => morph::run(&args),
         Command::Demo(args) => demo::run(&args),
         Command::MeshMorph(args) => mesh_morph::run(&args),
+        Command::Animate(args) => animate::run(&args),
     }
 }
 

@@ -1,0 +1,498 @@
+//! `immerse animate`: a keyframe sequence K1 → K2 → K3 … from curve files,
+//! one SVG drawing, or a timeline file (docs/timeline.md).
+
+mod timeline;
+
+use super::morph::write_frames;
+use crate::Outcome;
+use crate::args::{AnimateArgs, FormatArg, IntermediateArg};
+use crate::output;
+use anyhow::Context;
+use immerse::curve::SvgShapes;
+use immerse::frames::Morph;
+use immerse::morph::{CurveMorphOptions, Intermediate, MorphOptions};
+use immerse::sequence::{
+    Ease, Hint, HintAt, Key, KeySpeed, KeyTiming, Schedule, Sequence, SequenceError,
+    SequenceOptions, Timing, key_speeds,
+};
+use immerse::{Curve, Point, Quality};
+use immerse_render as render;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use timeline::{HintSpec, KeySpec, Timeline};
+
+/// Most vertex positions (frames × points) one sequence keeps in memory.
+const MAX_FRAME_POINTS: usize = 50_000_000;
+
+/// A key as read: its name in messages, the curve, and its spec.
+struct ReadKey {
+    name: String,
+    curve: Curve,
+    spec: KeySpec,
+}
+
+pub(crate) fn run(args: &AnimateArgs) -> anyhow::Result<Outcome> {
+    let cli_easing = args
+        .easing
+        .as_deref()
+        .map(|e| {
+            e.parse::<render::Easing>()
+                .with_context(|| format!("--easing '{e}'"))
+        })
+        .transpose()?;
+    if let Some(h) = args.hold
+        && !(h.is_finite() && h >= 0.0)
+    {
+        anyhow::bail!("--hold {h} is not a number of seconds of at least 0");
+    }
+    if let Some(fps) = args.fps
+        && !(fps.is_finite() && fps > 0.0 && fps <= 1000.0)
+    {
+        anyhow::bail!("--fps {fps} is not a rate above 0 and at most 1000 frames per second");
+    }
+    let svg_mode = args.svg_keys.map(SvgShapes::from);
+    // Where the keys come from, and the prefix of messages about them.
+    let (tl, prefix) = match &args.timeline {
+        Some(path) => (timeline::read(path)?, format!("{}: ", path.display())),
+        None => (positional(&args.keys)?, String::new()),
+    };
+    let svg_mode = svg_mode.or(tl.svg_keys).unwrap_or_default();
+    if let Some(json) = &args.json {
+        super::check_output_file(json, args.force)?;
+    }
+    let keys = read_keys(&tl, svg_mode, &prefix)?;
+    // Every image output is checked before any work (the keys are read
+    // first: a contact sheet's size depends on how many there are).
+    let fps = args.fps.or(tl.fps).unwrap_or(30.0);
+    let style = image_style(args);
+    let sheet_frames = (keys.len().saturating_sub(1)) * (args.sheet_inbetweens as usize + 2);
+    let mut images = Vec::with_capacity(args.output.len());
+    for out in &args.output {
+        images.push(super::check_images(
+            args.format,
+            out,
+            args.force,
+            sheet_frames,
+            &style,
+            fps,
+            None,
+        )?);
+    }
+    let mut on_stdout = vec![(
+        "--json",
+        args.json.as_deref().is_some_and(render::is_stdout),
+    )];
+    on_stdout.extend(args.output.iter().map(|o| ("-o", render::is_stdout(o))));
+    super::one_stdout(&on_stdout)?;
+    if !args.quiet {
+        for k in &keys {
+            if k.curve.reversed {
+                output::note(&format!(
+                    "{} is drawn clockwise; reversed it to counter-clockwise (frames follow the reversed order)",
+                    k.name
+                ));
+            }
+        }
+    }
+    let hints = pair_hints(&keys).map_err(|e| anyhow::anyhow!("{prefix}{e}"))?;
+    let lib_keys: Vec<Key> = keys
+        .iter()
+        .map(|k| Key::new(k.name.clone(), k.curve.points.clone()))
+        .collect();
+    let options = SequenceOptions::DEFAULT.with_morph(
+        CurveMorphOptions::DEFAULT
+            .with_quality(Quality::from(args.quality))
+            .with_correspondence(args.correspondence.into())
+            .with_intermediate(match args.intermediate {
+                IntermediateArg::Target => Intermediate::Target,
+                IntermediateArg::Disk => Intermediate::Disk,
+            })
+            .with_morph(MorphOptions::DEFAULT.with_path(args.path.into())),
+    );
+    let biggest = keys.iter().map(|k| k.curve.len()).max().unwrap_or(0);
+    let busy = super::spinner(
+        &format!(
+            "planning {} segments of about {biggest} vertices",
+            keys.len() - 1
+        ),
+        args.quiet || biggest < 300,
+    );
+    let planned = Sequence::new(&lib_keys, &hints, &options);
+    busy.finish_and_clear();
+    let seq = match planned {
+        Ok(s) => s,
+        Err(SequenceError::NotSelfOverlapping { key, name, reason }) if reason.is_answer() => {
+            output::note(&format!(
+                "{prefix}key {key} ({name}) is not self-overlapping: {reason}"
+            ));
+            return Ok(Outcome::Negative);
+        }
+        Err(e) => anyhow::bail!("{prefix}{e}"),
+    };
+    // Timing.
+    let m = keys.len();
+    let timing = Timing {
+        fps,
+        frames: args.frames.map(|f| f as usize).or(tl.frames),
+        keys: keys
+            .iter()
+            .enumerate()
+            .map(|(j, k)| KeyTiming {
+                time: k.spec.time,
+                hold: k.spec.hold.unwrap_or(if j > 0 && j + 1 < m {
+                    args.hold.unwrap_or(0.0)
+                } else {
+                    0.0
+                }),
+                duration: k.spec.duration,
+                easing: ease(k.spec.easing.or(cli_easing)),
+            })
+            .collect(),
+    };
+    let schedule = seq
+        .schedule(&timing)
+        .map_err(|e| anyhow::anyhow!("{prefix}{e}"))?;
+    let n = seq.vertex_count();
+    if schedule.samples.len().saturating_mul(n) > MAX_FRAME_POINTS {
+        anyhow::bail!(
+            "{} frames of {n} points is more than {MAX_FRAME_POINTS} points in all; ask for fewer --frames",
+            schedule.samples.len()
+        );
+    }
+    let morph = seq.frames(&schedule)?;
+    let speeds = key_speeds(&morph.frames, &schedule);
+    if !args.quiet {
+        for f in &morph.fallbacks {
+            output::note(&format!("{f} (every frame is an immersion)"));
+        }
+    }
+    if let Some(json) = &args.json {
+        let value = SequenceJson {
+            morph: &morph,
+            fps,
+            keys: keys
+                .iter()
+                .enumerate()
+                .map(|(j, k)| KeyJson {
+                    name: &k.name,
+                    frame: schedule.key_frames[j],
+                    hold: schedule.holds[j],
+                })
+                .collect(),
+            speeds: &speeds,
+        };
+        super::write_json(json, &value, false, args.force)?;
+    }
+    let looping = if args.ping_pong {
+        render::Loop::PingPong
+    } else if args.once {
+        render::Loop::Once
+    } else {
+        tl.looping.unwrap_or(render::Loop::Loop)
+    };
+    for (out, image) in args.output.iter().zip(&images) {
+        write_output(args, out, *image, &morph, &schedule, fps, looping)?;
+    }
+    let to_stdout = args.json.as_deref().is_some_and(render::is_stdout)
+        || args.output.iter().any(|o| render::is_stdout(o));
+    if !to_stdout {
+        output::print(&summary(&seq, &keys, &schedule, &speeds, &morph))?;
+    }
+    Ok(Outcome::Success)
+}
+
+fn ease(e: Option<render::Easing>) -> Ease {
+    match e {
+        None | Some(render::Easing::Linear) => Ease::LINEAR,
+        Some(e) => Ease::new(move |x| e.apply(x)),
+    }
+}
+
+impl From<crate::args::SvgKeysArg> for SvgShapes {
+    fn from(a: crate::args::SvgKeysArg) -> SvgShapes {
+        match a {
+            crate::args::SvgKeysArg::Auto => SvgShapes::Auto,
+            crate::args::SvgKeysArg::Shapes => SvgShapes::Shapes,
+            crate::args::SvgKeysArg::Groups => SvgShapes::Groups,
+        }
+    }
+}
+
+/// The keys named on the command line: two or more files, or one SVG
+/// drawing holding them all.
+fn positional(files: &[PathBuf]) -> anyhow::Result<Timeline> {
+    let is_svg = |p: &Path| {
+        p.extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("svg"))
+    };
+    let (keys, drawing) = match files {
+        [one] if is_svg(one) => (Vec::new(), Some(one.clone())),
+        [_] | [] => anyhow::bail!(
+            "{} key given; a sequence needs at least 2 keys: name two or more curve files, one SVG drawing with a shape per key, or --timeline FILE",
+            files.len()
+        ),
+        many => (
+            many.iter()
+                .map(|p| KeySpec::plain(p.clone(), None))
+                .collect(),
+            None,
+        ),
+    };
+    Ok(Timeline {
+        fps: None,
+        frames: None,
+        looping: None,
+        svg_keys: None,
+        keys,
+        drawing,
+    })
+}
+
+/// Reads every key's curve.
+fn read_keys(tl: &Timeline, mode: SvgShapes, prefix: &str) -> anyhow::Result<Vec<ReadKey>> {
+    let mut drawings: HashMap<PathBuf, Vec<Curve>> = HashMap::new();
+    let what = |file: &Path, c: &Curve| {
+        let stem = file
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("drawing");
+        let part = c
+            .name
+            .strip_prefix(stem)
+            .map_or(c.name.as_str(), str::trim_start);
+        format!("{} ({part})", file.display())
+    };
+    if let Some(file) = &tl.drawing {
+        let curves = Curve::all_from_svg_path(file, mode).map_err(|e| {
+            let e = anyhow::Error::new(e);
+            if prefix.is_empty() {
+                e
+            } else {
+                e.context(prefix.trim_end_matches(": ").to_string())
+            }
+        })?;
+        if curves.len() < 2 {
+            anyhow::bail!(
+                "{prefix}{}: 1 closed shape found; a sequence needs at least 2 keys: draw each key as its own shape, group or layer",
+                file.display()
+            );
+        }
+        return Ok(curves
+            .into_iter()
+            .map(|c| ReadKey {
+                name: what(file, &c),
+                spec: KeySpec::plain(file.clone(), None),
+                curve: c,
+            })
+            .collect());
+    }
+    let mut out = Vec::with_capacity(tl.keys.len());
+    for (j, spec) in tl.keys.iter().enumerate() {
+        let at = format!("{prefix}key {}", j + 1);
+        let (name, curve) = match spec.shape {
+            // Named on the command line, the file names itself.
+            None if prefix.is_empty() => (spec.curve_text.clone(), Curve::from_path(&spec.curve)?),
+            None => {
+                let c = Curve::from_path(&spec.curve).with_context(|| at.clone())?;
+                (spec.curve_text.clone(), c)
+            }
+            Some(k) => {
+                if !drawings.contains_key(&spec.curve) {
+                    let all =
+                        Curve::all_from_svg_path(&spec.curve, mode).with_context(|| at.clone())?;
+                    drawings.insert(spec.curve.clone(), all);
+                }
+                let all = &drawings[&spec.curve];
+                let c = all.get(k - 1).cloned().ok_or_else(|| {
+                    anyhow::anyhow!(
+                        "{at}: shape {k} does not exist; {} has {} shape(s) as keys",
+                        spec.curve.display(),
+                        all.len()
+                    )
+                })?;
+                (format!("{} (shape {k})", spec.curve_text), c)
+            }
+        };
+        out.push(ReadKey {
+            name,
+            curve,
+            spec: spec.clone(),
+        });
+    }
+    Ok(out)
+}
+
+/// Pairs the keys' named hints into hints between consecutive keys.
+fn pair_hints(keys: &[ReadKey]) -> Result<Vec<Hint>, String> {
+    let mut out = Vec::new();
+    for (j, k) in keys.iter().enumerate() {
+        for (name, spec) in &k.spec.hints {
+            let on = |i: usize| -> Option<&HintSpec> {
+                keys.get(i)?
+                    .spec
+                    .hints
+                    .iter()
+                    .find(|(n, _)| n == name)
+                    .map(|(_, s)| s)
+            };
+            let before = j > 0 && on(j - 1).is_some();
+            if let Some(next) = on(j + 1) {
+                out.push(Hint {
+                    name: name.clone(),
+                    segment: j,
+                    from: hint_at(k, j, name, *spec)?,
+                    to: hint_at(&keys[j + 1], j + 1, name, *next)?,
+                });
+            } else if !before {
+                return Err(format!(
+                    "key {} ({}): hint '{name}' has no partner; name it on {} too (hints pair points of consecutive keys by name)",
+                    j + 1,
+                    k.name,
+                    match (j > 0, j + 1 < keys.len()) {
+                        (true, true) => format!("key {} or key {}", j, j + 2),
+                        (true, false) => format!("key {j}"),
+                        _ => format!("key {}", j + 2),
+                    }
+                ));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// A hint as the library takes it: file indices become cleaned vertices,
+/// fractions follow the oriented curve.
+fn hint_at(k: &ReadKey, j: usize, name: &str, spec: HintSpec) -> Result<HintAt, String> {
+    match spec {
+        HintSpec::Index(r) => {
+            let count = k.curve.source_vertex.len();
+            k.curve
+                .source_vertex
+                .get(r)
+                .map(|&v| HintAt::Vertex(v))
+                .ok_or_else(|| {
+                    format!(
+                        "key {} ({}): hint '{name}': point {r} does not exist; the file has {count} points (0 to {})",
+                        j + 1,
+                        k.name,
+                        count - 1
+                    )
+                })
+        }
+        HintSpec::Position(x, y) => Ok(HintAt::Point(Point::new(x, y))),
+        HintSpec::Fraction(f) => Ok(HintAt::Fraction(if k.curve.reversed {
+            (1.0 - f).rem_euclid(1.0)
+        } else {
+            f
+        })),
+    }
+}
+
+#[derive(serde::Serialize)]
+struct KeyJson<'a> {
+    name: &'a str,
+    frame: usize,
+    hold: usize,
+}
+
+/// `morph --json`'s format plus the keys and the speeds at them.
+#[derive(serde::Serialize)]
+struct SequenceJson<'a> {
+    #[serde(flatten)]
+    morph: &'a Morph,
+    fps: f64,
+    keys: Vec<KeyJson<'a>>,
+    speeds: &'a [KeySpeed],
+}
+
+/// The image style of `animate`'s options.
+fn image_style(args: &AnimateArgs) -> render::Style {
+    render::Style::DEFAULT
+        .with_size(args.size.0, args.size.1)
+        .with_wireframe(args.wireframe)
+        .with_onion_skin(args.onion)
+}
+
+fn write_output(
+    args: &AnimateArgs,
+    out: &Path,
+    image: super::ImageOutput,
+    morph: &Morph,
+    schedule: &Schedule,
+    fps: f64,
+    looping: render::Loop,
+) -> anyhow::Result<()> {
+    let style = image_style(args);
+    if image.format == FormatArg::Sheet {
+        // One row per segment: the key, in-betweens, the next key.
+        let k = args.sheet_inbetweens as usize;
+        let mut picked = Vec::new();
+        for s in 0..schedule.steps.len() {
+            let start = schedule.key_frames[s] + schedule.holds[s];
+            let end = schedule.key_frames[s + 1];
+            for i in 0..=k + 1 {
+                let f = start as f64 + (end - start) as f64 * i as f64 / (k + 1) as f64;
+                picked.push(morph.frames[f.round() as usize].clone());
+            }
+        }
+        let frames = super::render_frames(&picked);
+        let sheet = super::ImageOutput {
+            format: FormatArg::Sheet,
+            columns: k + 2,
+        };
+        return write_frames(
+            &frames, out, sheet, &style, fps, looping, args.force, args.quiet,
+        );
+    }
+    let frames = super::render_frames(&morph.frames);
+    write_frames(
+        &frames, out, image, &style, fps, looping, args.force, args.quiet,
+    )
+}
+
+fn summary(
+    seq: &Sequence,
+    keys: &[ReadKey],
+    schedule: &Schedule,
+    speeds: &[KeySpeed],
+    morph: &Morph,
+) -> String {
+    let frames = morph.frames.len();
+    let valid = morph.frames.iter().filter(|f| f.is_immersion()).count();
+    let mut lines = vec![format!(
+        "{} keys, {} vertices each, {} frames at {} fps ({:.2} s), {} of them verified immersions",
+        keys.len(),
+        seq.vertex_count(),
+        frames,
+        schedule.fps,
+        (frames.max(1) - 1) as f64 / schedule.fps,
+        valid
+    )];
+    for s in speeds {
+        let k = &keys[s.key - 1];
+        lines.push(format!(
+            "key {} ({}) at frame {}: speed {:.4} before, {:.4} after, ratio {:.3}{}",
+            s.key,
+            k.name,
+            s.frame,
+            s.before,
+            s.after,
+            s.ratio,
+            s.not_continuous.as_ref().map_or(String::new(), |w| format!(
+                " (not meant to be continuous: {w})"
+            ))
+        ));
+    }
+    let worst = speeds
+        .iter()
+        .filter(|s| s.not_continuous.is_none())
+        .map(|s| s.ratio)
+        .fold(f64::NAN, f64::max);
+    if worst.is_finite() {
+        lines.push(format!(
+            "largest speed ratio at keys meant to be continuous: {worst:.3}"
+        ));
+    }
+    lines.join("\n")
+}

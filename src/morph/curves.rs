@@ -550,8 +550,11 @@ pub(crate) fn sides(p: &Prepared, k: usize, options: &CurveMorphOptions) -> Side
             max_step,
         })
     };
-    let side_a = side(a, ta, &b_in_a, &tb_in_a);
-    let side_b = side(b, tb, &a_in_b, &ta_in_b);
+    // The two sides are independent: one on each core.
+    let (side_a, side_b) = rayon::join(
+        || side(a, ta, &b_in_a, &tb_in_a),
+        || side(b, tb, &a_in_b, &ta_in_b),
+    );
     let lex = |p: &[Point]| -> Vec<u64> {
         p.iter()
             .flat_map(|q| [q.x.to_bits(), q.y.to_bits()])
@@ -602,8 +605,13 @@ pub(crate) fn plan(
         return one(options.correspondence);
     }
     let mut best: Option<(f64, (Prepared, Sides))> = None;
-    for rule in [Correspondence::Outline, Correspondence::MinFlips] {
-        let candidate = one(rule)?;
+    // The two trials are independent: planned side by side.
+    let (outline, min_flips) = rayon::join(
+        || one(Correspondence::Outline),
+        || one(Correspondence::MinFlips),
+    );
+    for candidate in [outline, min_flips] {
+        let candidate = candidate?;
         let s = &candidate.1;
         let chosen = if s.use_a { &s.a } else { &s.b };
         let travel = chosen.as_ref().map_or(f64::INFINITY, Staged::mean_travel);

@@ -295,12 +295,17 @@ pub fn root_triangle(tree: &DualTree, points: &[Point], choice: RootChoice) -> u
 }
 
 /// Unit-circle positions of the vertices, spaced in proportion to the
-/// curve's edge lengths (vertex 0 at angle 0, counter-clockwise).
+/// curve's edge lengths (vertex 0 at angle 0, counter-clockwise), each edge
+/// given at least 1/(4n) of the circle so that no two positions coincide
+/// however short an edge is.
 pub fn disk_positions(points: &[Point]) -> Vec<Point> {
     let n = points.len();
-    let lengths: Vec<f64> = (0..n)
+    let raw: Vec<f64> = (0..n)
         .map(|i| (points[(i + 1) % n] - points[i]).length())
         .collect();
+    let perimeter: f64 = raw.iter().sum();
+    let floor = perimeter / (4.0 * n as f64);
+    let lengths: Vec<f64> = raw.iter().map(|&l| l.max(floor)).collect();
     let total: f64 = lengths.iter().sum();
     let mut acc = 0.0;
     let mut out = Vec::with_capacity(n);
@@ -319,6 +324,30 @@ mod tests {
     /// Fan triangulation of an n-gon from vertex 0.
     pub(crate) fn fan(n: u32) -> Vec<[u32; 3]> {
         (1..n - 1).map(|i| [0, i, i + 1]).collect()
+    }
+
+    #[test]
+    fn disk_positions_never_coincide_even_for_a_tiny_edge() {
+        // A square with one edge 1e-13 of the perimeter: spacing by edge
+        // length alone rounds its two disk points together.
+        let pts = vec![
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(1.0, 1.0),
+            Point::new(0.0, 1.0),
+            Point::new(0.0, 4e-13),
+        ];
+        let d = disk_positions(&pts);
+        for i in 0..d.len() {
+            for j in i + 1..d.len() {
+                assert_ne!(d[i], d[j], "{i} {j}");
+            }
+        }
+        // Every fan triangle of the disk is exactly counter-clockwise.
+        for t in fan(d.len() as u32) {
+            let [a, b, c] = t.map(|v| d[v as usize]);
+            assert!(crate::geom::orient(a, b, c).is_ccw(), "{t:?}");
+        }
     }
 
     #[test]

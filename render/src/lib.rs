@@ -14,6 +14,7 @@
 //!          ──> render (tiny-skia; depth-shaded fill, wireframe, outline, onion skin)
 //!          ──> encode_png / write_png_sequence / write_gif (rayon in parallel)
 //!          ──> svg_frame / write_svg_sequence / write_animated_svg (SMIL)
+//!          ──> lottie / write_lottie (one shape layer, path keyframes)
 //! ```
 //!
 //! Writers never overwrite silently: [`prepare_output_dir`] and
@@ -54,6 +55,7 @@
 mod easing;
 mod error;
 mod frame;
+mod lottie;
 mod output;
 mod raster;
 mod style;
@@ -63,8 +65,9 @@ mod view;
 pub use easing::{Easing, frame_times};
 pub use error::RenderError;
 pub use frame::Frame;
+pub use lottie::{LOTTIE_TOLERANCE_PX, lottie, write_lottie};
 pub use output::{
-    Loop, Output, contact_sheet, frame_file_name, prepare_output_dir, write_atomic,
+    Loop, Output, contact_sheet, encode_gif, frame_file_name, prepare_output_dir, write_atomic,
     write_contact_sheet, write_gif, write_png_sequence,
 };
 pub use raster::{encode_png, render};

@@ -308,11 +308,41 @@ pub fn write_gif(
         height: style.height,
         reason: "gif images are at most 65535 pixels a side",
     };
-    let w = u16::try_from(style.width).map_err(|_| too_large())?;
-    let h = u16::try_from(style.height).map_err(|_| too_large())?;
+    u16::try_from(style.width).map_err(|_| too_large())?;
+    u16::try_from(style.height).map_err(|_| too_large())?;
     if !opts.force && std::fs::symlink_metadata(path).is_ok() {
         return Err(RenderError::FileExists { path: path.into() });
     }
+    let out = encode_gif(frames, style, fps, looping, opts, progress)?;
+    write_atomic(path, &out, opts.force)
+}
+
+/// The GIF that [`write_gif`] writes, in memory (for a server; `opts.force`
+/// is not used).
+///
+/// # Errors
+///
+/// As [`write_gif`], without the output-safety errors.
+pub fn encode_gif(
+    frames: &[Frame],
+    style: &Style,
+    fps: f64,
+    looping: Loop,
+    opts: &Output,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<Vec<u8>, RenderError> {
+    if frames.is_empty() {
+        return Err(RenderError::NoFrames);
+    }
+    check_fps(fps)?;
+    style.check_size()?;
+    let too_large = || RenderError::ImageTooLarge {
+        width: style.width,
+        height: style.height,
+        reason: "gif images are at most 65535 pixels a side",
+    };
+    let w = u16::try_from(style.width).map_err(|_| too_large())?;
+    let h = u16::try_from(style.height).map_err(|_| too_large())?;
     let delay = (100.0 / fps).round().clamp(2.0, f64::from(u16::MAX)) as u16;
     let speed = opts.gif_speed.clamp(1, 30);
     let view = View::fit(frames, style);
@@ -360,7 +390,7 @@ pub fn write_gif(
         }
     }
     encoder.into_inner().map_err(RenderError::Gif)?;
-    write_atomic(path, &out, opts.force)
+    Ok(out)
 }
 
 pub(crate) fn check_fps(fps: f64) -> Result<(), RenderError> {

@@ -14,3 +14,4 @@ mod morph;
 mod pairs;
 mod properties;
 mod util;
+mod web;

@@ -71,7 +71,36 @@ pub(crate) enum Command {
     /// immerse-demo/ by default; running it again replaces its own output
     /// but never files it did not write.
     #[command(after_help = "Examples:\n  immerse demo\n  immerse demo -o /tmp/show --frames 48")]
-    Demo(DemoArgs),
+    Demo(DemoArgs),    /// Serve the playground page on 127.0.0.1: draw curves, morph, scrub, download.
+    ///
+    /// An HTTP server bound to 127.0.0.1 only, serving one self-contained
+    /// page (embedded in the binary; no network is used) and a JSON API
+    /// (POST /api/morph, POST /api/check; see the README). Request sizes,
+    /// points, frames and concurrent jobs are bounded. Stops on Ctrl-C.
+    #[command(
+        after_help = "Examples:\n  immerse serve\n  immerse serve --port 0 --open\n  immerse serve --port 8080 --max-jobs 4"
+    )]
+    Serve(ServeArgs),
+}
+
+/// Arguments of `immerse serve`.
+#[derive(Debug, Args)]
+pub(crate) struct ServeArgs {
+    /// Port on 127.0.0.1; 0 picks a free one. The URL is printed on stdout.
+    #[arg(long, default_value_t = 7878)]
+    pub(crate) port: u16,
+    /// Open the page in the default browser.
+    #[arg(long)]
+    pub(crate) open: bool,
+    /// Most morphs (and other heavy jobs) running at once; more get HTTP 429.
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub(crate) max_jobs: u32,
+    /// Seconds a request waits for its morph before answering HTTP 503.
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    pub(crate) job_timeout: u64,
+    /// For tests: every job sleeps this many milliseconds before it starts.
+    #[arg(long, default_value_t = 0, hide = true)]
+    pub(crate) job_delay_ms: u64,
 }
 
 /// Mesh morph method.
@@ -247,6 +276,8 @@ pub(crate) enum FormatArg {
     AnimatedSvg,
     /// One PNG with every frame side by side (a contact sheet).
     Sheet,
+    /// One Lottie JSON animation (one shape layer, path keyframes); also for -o NAME.lottie.json.
+    Lottie,
 }
 
 /// How vertex counts are matched.

@@ -5,6 +5,7 @@ mod check;
 mod demo;
 mod mesh_morph;
 mod morph;
+mod serve;
 mod triangulate;
 
 use crate::Outcome;
@@ -21,6 +22,7 @@ pub(crate) fn run(cli: Cli) -> anyhow::Result<Outcome> {
         Command::Morph(args) => morph::run(&args),
         Command::Demo(args) => demo::run(&args),
         Command::MeshMorph(args) => mesh_morph::run(&args),
+        Command::Serve(args) => serve::run(&args),
     }
 }
 
@@ -111,6 +113,13 @@ pub(crate) fn image_format(
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
+    let lottie = out
+        .file_name()
+        .and_then(|n| n.to_str())
+        .is_some_and(|n| n.to_ascii_lowercase().ends_with(".lottie.json"));
+    if asked.is_none() && lottie {
+        return FormatArg::Lottie;
+    }
     asked.unwrap_or(match ext.as_deref() {
         Some("gif") => FormatArg::Gif,
         Some("svg") => FormatArg::AnimatedSvg,

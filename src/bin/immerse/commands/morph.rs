@@ -272,6 +272,7 @@ pub(crate) fn write_frames(
             render::write_animated_svg(frames, out, style, fps, looping, &opts)?;
         }
         FormatArg::Sheet => render::write_contact_sheet(frames, out, style, 0, &opts)?,
+        FormatArg::Lottie => render::write_lottie(frames, out, style, fps, looping, &opts)?,
     }
     bar.finish_and_clear();
     Ok(())

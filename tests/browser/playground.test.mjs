@@ -33,7 +33,7 @@ const BIN = resolve(root, process.env.IMMERSE_BIN || "target/release/immerse");
 const CHROMIUM = process.env.CHROMIUM || "/usr/bin/chromium";
 const SCREENSHOT = resolve(root, process.env.SCREENSHOT || "docs/img/playground.png");
 const FRAMES = 24;
-const SCRUB_TO = 13;
+const SCRUB_TO = 20; // a frame where the strip overlaps itself
 const SIZE = 600;
 const started = Date.now();
 const measured = {};
@@ -160,15 +160,29 @@ async function compareWithPng(page, canvasExpr, pngBase64, threshold) {
     if (canvas.width !== ref.width || canvas.height !== ref.height) {
       return { error: `sizes differ: ${canvas.width}x${canvas.height} vs ${ref.width}x${ref.height}` };
     }
-    let max = 0, sum = 0, over = 0;
+    // The shades of depth 1 and 2 (render/src/style.rs: fill #3d7cc9 at
+    // 1-(1-0.45)^k over #fbfaf7).
+    const shade = (k) => {
+      const o = 1 - Math.pow(0.55, k);
+      return [[0xfb, 0x3d], [0xfa, 0x7c], [0xf7, 0xc9]].map(([bg, f]) => Math.round(bg * (1 - o) + f * o));
+    };
+    const near = (d, i, c) => Math.abs(d[i] - c[0]) <= 3 && Math.abs(d[i + 1] - c[1]) <= 3 && Math.abs(d[i + 2] - c[2]) <= 3;
+    const [one, two] = [shade(1), shade(2)];
+    let max = 0, sum = 0, over = 0, depth1 = [0, 0], depth2 = [0, 0];
     for (let i = 0; i < a.length; i += 4) {
       const d = Math.max(Math.abs(a[i] - b[i]), Math.abs(a[i + 1] - b[i + 1]), Math.abs(a[i + 2] - b[i + 2]));
       max = Math.max(max, d);
       sum += d;
       if (d > threshold) over++;
+      if (near(b, i, one)) { depth1[0]++; if (near(a, i, one)) depth1[1]++; }
+      if (near(b, i, two)) { depth2[0]++; if (near(a, i, two)) depth2[1]++; }
     }
     const pixels = a.length / 4;
-    return { pixels, max, mean: sum / pixels, over, overFraction: over / pixels };
+    return {
+      pixels, max, mean: sum / pixels, over, overFraction: over / pixels,
+      // [pixels of that shade in the PNG, of those, pixels of that shade on the canvas]
+      depth1, depth2,
+    };
   }, { canvasExpr, pngBase64, threshold });
 }
 
@@ -256,8 +270,6 @@ test("playground: draw two curves, morph, scrub; the canvas is immerse morph's P
 });
 
 test("lottie: lottie-web renders immerse's Lottie like immerse's PNG", { timeout: 120000 }, async () => {
-  const a = join(work, "a.json");
-  const b = join(work, "b.json");
   const lottieFile = join(work, "morph.lottie.json");
   const framesDir = join(work, "frames");
   const animation = JSON.parse(readFileSync(lottieFile, "utf8"));
@@ -265,34 +277,42 @@ test("lottie: lottie-web renders immerse's Lottie like immerse's PNG", { timeout
   assert.equal(animation.layers[0].ty, 4);
   const keys = animation.layers[0].shapes[0].it[0].ks.k;
   measured.lottie_keyframes = `${keys.length} of ${FRAMES} frames`;
-  const png = readFileSync(join(framesDir, `frame_${String(SCRUB_TO).padStart(4, "0")}.png`)).toString("base64");
-  void a; void b;
-
   const page = await context.newPage();
   const errors = watchConsole(page);
   await page.setContent(`<!doctype html><html><body style="margin:0;background:#fff">
     <canvas id="lottie" width="${SIZE}" height="${SIZE}"></canvas></body></html>`);
   await page.addScriptTag({ path: require.resolve("lottie-web/build/player/lottie.min.js") });
-  await page.evaluate(({ data, frame }) => {
+  await page.evaluate((data) => {
     const canvas = document.getElementById("lottie");
-    const anim = window.lottie.loadAnimation({
+    window.anim = window.lottie.loadAnimation({
       renderer: "canvas",
       loop: false,
       autoplay: false,
       animationData: data,
       rendererSettings: { context: canvas.getContext("2d"), clearCanvas: true, dpr: 1 },
     });
-    return new Promise((resolveFrame) => {
-      const go = () => { anim.goToAndStop(frame, true); resolveFrame(); };
-      if (anim.isLoaded) go(); else anim.addEventListener("DOMLoaded", go);
+    return new Promise((done) => {
+      if (window.anim.isLoaded) done(); else window.anim.addEventListener("DOMLoaded", done);
     });
-  }, { data: animation, frame: SCRUB_TO });
+  }, animation);
 
-  const diff = await compareWithPng(page, "document.getElementById('lottie')", png, 32);
-  assert.equal(diff.error, undefined, diff.error);
-  measured.lottie_vs_png = diff;
-  assert.ok(diff.overFraction <= 0.02, `${(diff.overFraction * 100).toFixed(2)}% of the pixels differ by more than 32`);
-  assert.ok(diff.mean <= 2, `mean difference ${diff.mean}`);
+  // The scrubbed frame, and the last frame (the strip, overlapping itself).
+  for (const frame of [SCRUB_TO, FRAMES - 1]) {
+    await page.evaluate((k) => window.anim.goToAndStop(k, true), frame);
+    const png = readFileSync(join(framesDir, `frame_${String(frame).padStart(4, "0")}.png`)).toString("base64");
+    const diff = await compareWithPng(page, "document.getElementById('lottie')", png, 32);
+    assert.equal(diff.error, undefined, diff.error);
+    measured[`lottie_vs_png_frame_${frame}`] = diff;
+    assert.ok(diff.overFraction <= 0.02, `frame ${frame}: ${(diff.overFraction * 100).toFixed(2)}% of the pixels differ by more than 32`);
+    assert.ok(diff.mean <= 2, `frame ${frame}: mean difference ${diff.mean}`);
+    // Overlap depth is shaded as in the PNG: nearly every pixel of the
+    // PNG's depth-1 and depth-2 shades has that shade in lottie-web too.
+    assert.ok(diff.depth1[1] >= 0.95 * diff.depth1[0], `frame ${frame}, depth 1 shading: ${diff.depth1}`);
+    assert.ok(diff.depth2[1] >= 0.95 * diff.depth2[0], `frame ${frame}, depth 2 shading: ${diff.depth2}`);
+    if (frame === FRAMES - 1) {
+      assert.ok(diff.depth2[0] > 500, `the last frame overlaps itself: ${diff.depth2}`);
+    }
+  }
   assert.deepEqual(errors, [], "console errors on the Lottie page");
   await page.close();
 });

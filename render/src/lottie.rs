@@ -354,8 +354,14 @@ mod tests {
         let style = Style::DEFAULT.with_size(320, 200).with_onion_skin(false);
         let doc = parse(&lottie(&frames, &style, 24.0, Loop::Loop).unwrap());
         assert_eq!(doc["fr"], 24.0);
-        assert_eq!((doc["w"].as_u64(), doc["h"].as_u64()), (Some(320), Some(200)));
-        assert_eq!((doc["ip"].as_f64(), doc["op"].as_f64()), (Some(0.0), Some(31.0)));
+        assert_eq!(
+            (doc["w"].as_u64(), doc["h"].as_u64()),
+            (Some(320), Some(200))
+        );
+        assert_eq!(
+            (doc["ip"].as_f64(), doc["op"].as_f64()),
+            (Some(0.0), Some(31.0))
+        );
         let layers = doc["layers"].as_array().unwrap();
         assert_eq!(layers.len(), 1);
         assert_eq!(layers[0]["ty"], 4);
@@ -400,7 +406,11 @@ mod tests {
             .as_array()
             .unwrap()
             .clone();
-        assert!(keys.len() < 121 && keys.len() > 2, "{} keyframes", keys.len());
+        assert!(
+            keys.len() < 121 && keys.len() > 2,
+            "{} keyframes",
+            keys.len()
+        );
         let view = View::fit(&frames, &style);
         let at = |k: &Value| -> (f64, Vec<[f64; 2]>) {
             let v = k["s"][0]["v"].as_array().unwrap();
@@ -441,20 +451,14 @@ mod tests {
 
     #[test]
     fn a_change_of_vertex_count_holds() {
-        let tri = Frame::from_triangles(
-            vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
-            vec![[0, 1, 2]],
-        );
+        let tri = Frame::from_triangles(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], vec![[0, 1, 2]]);
         let quad = Frame::from_triangles(
             vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
             vec![[0, 1, 2], [0, 2, 3]],
         );
         let frames = vec![tri.clone(), tri, quad.clone(), quad];
         let keys = keyframes(
-            &frames
-                .iter()
-                .map(|f| f.points.clone())
-                .collect::<Vec<_>>(),
+            &frames.iter().map(|f| f.points.clone()).collect::<Vec<_>>(),
             1.0,
         );
         assert_eq!(keys, vec![0, 1, 3]);

@@ -58,8 +58,9 @@ impl Server {
 
     fn post(&self, path: &str, json: &serde_json::Value) -> (u16, serde_json::Value) {
         let (status, body) = self.request("POST", path, Some(json.to_string().as_bytes()));
-        let value = serde_json::from_slice(&body)
-            .unwrap_or_else(|e| panic!("{path}: not JSON ({e}): {}", String::from_utf8_lossy(&body)));
+        let value = serde_json::from_slice(&body).unwrap_or_else(|e| {
+            panic!("{path}: not JSON ({e}): {}", String::from_utf8_lossy(&body))
+        });
         (status, value)
     }
 }
@@ -90,7 +91,10 @@ fn raw_request(port: u16, head: &[u8], body: &[u8]) -> (u16, Vec<u8>) {
         .and_then(|c| c.parse().ok())
         .unwrap_or_else(|| panic!("bad status line: {head}"));
     let mut body = out[text_end + 4..].to_vec();
-    if head.to_ascii_lowercase().contains("transfer-encoding: chunked") {
+    if head
+        .to_ascii_lowercase()
+        .contains("transfer-encoding: chunked")
+    {
         body = dechunk(&body);
     }
     (status, body)
@@ -102,7 +106,8 @@ fn dechunk(mut data: &[u8]) -> Vec<u8> {
         let Some(eol) = data.windows(2).position(|w| w == b"\r\n") else {
             return out;
         };
-        let size = usize::from_str_radix(String::from_utf8_lossy(&data[..eol]).trim(), 16).unwrap_or(0);
+        let size =
+            usize::from_str_radix(String::from_utf8_lossy(&data[..eol]).trim(), 16).unwrap_or(0);
         if size == 0 {
             return out;
         }
@@ -119,7 +124,9 @@ fn points_of(name: &str) -> serde_json::Value {
 }
 
 fn error_of(v: &serde_json::Value) -> &str {
-    v["error"].as_str().unwrap_or_else(|| panic!("no error field: {v}"))
+    v["error"]
+        .as_str()
+        .unwrap_or_else(|| panic!("no error field: {v}"))
 }
 
 #[test]
@@ -178,10 +185,16 @@ fn serve_morphs_like_the_cli_and_serves_the_page() {
     assert_eq!(&gif[..6], b"GIF89a");
     let (status, svg) = server.get(reply["urls"]["svg"].as_str().unwrap());
     assert_eq!(status, 200);
-    assert!(String::from_utf8_lossy(&svg).starts_with("<svg") || String::from_utf8_lossy(&svg).starts_with("<?xml"));
+    assert!(
+        String::from_utf8_lossy(&svg).starts_with("<svg")
+            || String::from_utf8_lossy(&svg).starts_with("<?xml")
+    );
     let (status, morph) = server.get(reply["urls"]["json"].as_str().unwrap());
     assert_eq!(status, 200);
-    assert_eq!(serde_json::from_slice::<serde_json::Value>(&morph).unwrap(), cli);
+    assert_eq!(
+        serde_json::from_slice::<serde_json::Value>(&morph).unwrap(),
+        cli
+    );
     let (status, _) = server.get(&reply["urls"]["frame"].as_str().unwrap().replace("{k}", "7"));
     assert_eq!(status, 404);
     assert_eq!(server.get("/api/jobs/999/morph.gif").0, 404);
@@ -197,7 +210,12 @@ fn serve_morphs_like_the_cli_and_serves_the_page() {
     assert_eq!(frames.len(), 9);
     // It ends on the first curve (its vertices, perhaps starting elsewhere).
     let sorted = |v: &serde_json::Value| {
-        let mut p: Vec<String> = v.as_array().unwrap().iter().map(|q| q.to_string()).collect();
+        let mut p: Vec<String> = v
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|q| q.to_string())
+            .collect();
         p.sort();
         p
     };
@@ -231,23 +249,44 @@ fn serve_bounds_requests_with_json_errors() {
     assert_eq!(status, 400);
     let v: serde_json::Value = serde_json::from_slice(&body).unwrap();
     assert!(error_of(&v).starts_with("bad request JSON: "), "{v}");
-    let (status, v) = server.post("/api/morph", &serde_json::json!({"curves": [a, b], "frames": 241}));
+    let (status, v) = server.post(
+        "/api/morph",
+        &serde_json::json!({"curves": [a, b], "frames": 241}),
+    );
     assert_eq!(status, 400);
     assert_eq!(error_of(&v), "\"frames\": 241 is not from 2 to 240");
     let (status, v) = server.post("/api/morph", &serde_json::json!({"curves": [a]}));
     assert_eq!(status, 400);
-    assert_eq!(error_of(&v), "\"curves\" holds 1 curve(s); give from 2 to 8");
-    let (status, v) = server.post("/api/morph", &serde_json::json!({"curves": [a, b], "path": "wobbly"}));
+    assert_eq!(
+        error_of(&v),
+        "\"curves\" holds 1 curve(s); give from 2 to 8"
+    );
+    let (status, v) = server.post(
+        "/api/morph",
+        &serde_json::json!({"curves": [a, b], "path": "wobbly"}),
+    );
     assert_eq!(status, 400);
-    assert!(error_of(&v).starts_with("\"path\": 'wobbly' is not one of hybrid, straight"), "{v}");
-    let (status, v) = server.post("/api/morph", &serde_json::json!({"curves": [a, b], "colour": 1}));
+    assert!(
+        error_of(&v).starts_with("\"path\": 'wobbly' is not one of hybrid, straight"),
+        "{v}"
+    );
+    let (status, v) = server.post(
+        "/api/morph",
+        &serde_json::json!({"curves": [a, b], "colour": 1}),
+    );
     assert_eq!(status, 400);
     assert!(error_of(&v).contains("unknown field `colour`"), "{v}");
     let eight = points_of("turning-one-not-self-overlapping-n9.json");
     let (status, v) = server.post("/api/morph", &serde_json::json!({"curves": [a, eight]}));
     assert_eq!(status, 400);
-    assert!(error_of(&v).starts_with("curve 2 is not self-overlapping: "), "{v}");
-    let (status, v) = server.post("/api/check", &serde_json::json!({"points": [[0, 0], [1, 1]]}));
+    assert!(
+        error_of(&v).starts_with("curve 2 is not self-overlapping: "),
+        "{v}"
+    );
+    let (status, v) = server.post(
+        "/api/check",
+        &serde_json::json!({"points": [[0, 0], [1, 1]]}),
+    );
     assert_eq!(status, 400);
     assert!(error_of(&v).contains("at least 3"), "{v}");
 
@@ -260,7 +299,10 @@ fn serve_bounds_requests_with_json_errors() {
         .collect();
     let (status, v) = server.post("/api/morph", &serde_json::json!({"curves": [a, many]}));
     assert_eq!(status, 413);
-    assert!(error_of(&v).starts_with("curve 2 has 5001 points; the playground accepts at most 5000"), "{v}");
+    assert!(
+        error_of(&v).starts_with("curve 2 has 5001 points; the playground accepts at most 5000"),
+        "{v}"
+    );
     let big = vec![b' '; 3 << 20];
     let (status, body) = server.request("POST", "/api/morph", Some(&big));
     assert_eq!(status, 413);
@@ -292,10 +334,16 @@ fn serve_bounds_requests_with_json_errors() {
     std::thread::sleep(Duration::from_millis(500));
     let (status, v) = server.post("/api/morph", &ok);
     assert_eq!(status, 429, "{v}");
-    assert!(error_of(&v).starts_with("1 job(s) are already running"), "{v}");
+    assert!(
+        error_of(&v).starts_with("1 job(s) are already running"),
+        "{v}"
+    );
     let t = Instant::now();
     assert_eq!(server.get("/api/limits").0, 200);
-    assert!(t.elapsed() < Duration::from_secs(1), "a running morph blocked a request");
+    assert!(
+        t.elapsed() < Duration::from_secs(1),
+        "a running morph blocked a request"
+    );
     let (status, body) = first.join().unwrap();
     assert_eq!(status, 200, "{}", String::from_utf8_lossy(&body));
 }
@@ -305,9 +353,15 @@ fn serve_times_out_long_jobs_and_stops_on_ctrl_c() {
     let mut server = Server::start(&["--job-timeout", "1", "--job-delay-ms", "1500"]);
     let a = points_of("spiral-strip-400deg-n30.json");
     let b = points_of("curl-strip-n10.json");
-    let (status, v) = server.post("/api/morph", &serde_json::json!({"curves": [a, b], "frames": 3}));
+    let (status, v) = server.post(
+        "/api/morph",
+        &serde_json::json!({"curves": [a, b], "frames": 3}),
+    );
     assert_eq!(status, 503);
-    assert!(error_of(&v).starts_with("the morph took longer than 1 s"), "{v}");
+    assert!(
+        error_of(&v).starts_with("the morph took longer than 1 s"),
+        "{v}"
+    );
     #[cfg(unix)]
     {
         let pid = server.child.id().to_string();
@@ -322,7 +376,10 @@ fn serve_times_out_long_jobs_and_stops_on_ctrl_c() {
                 );
                 break;
             }
-            assert!(t.elapsed() < Duration::from_secs(10), "serve did not stop on Ctrl-C");
+            assert!(
+                t.elapsed() < Duration::from_secs(10),
+                "serve did not stop on Ctrl-C"
+            );
             std::thread::sleep(Duration::from_millis(50));
         }
         assert!(TcpStream::connect(("127.0.0.1", server.port)).is_err());
@@ -332,7 +389,10 @@ fn serve_times_out_long_jobs_and_stops_on_ctrl_c() {
 #[test]
 fn morph_writes_lottie() {
     let dir = tempfile::tempdir().unwrap();
-    let (a, b) = (curve("spiral-strip-400deg-n30.json"), curve("curl-strip-n10.json"));
+    let (a, b) = (
+        curve("spiral-strip-400deg-n30.json"),
+        curve("curl-strip-n10.json"),
+    );
     for (args, file) in [
         (vec!["--format", "lottie"], "m.json"),
         (vec![], "m.lottie.json"),

@@ -71,7 +71,8 @@ pub(crate) enum Command {
     /// immerse-demo/ by default; running it again replaces its own output
     /// but never files it did not write.
     #[command(after_help = "Examples:\n  immerse demo\n  immerse demo -o /tmp/show --frames 48")]
-    Demo(DemoArgs),    /// Serve the playground page on 127.0.0.1: draw curves, morph, scrub, download.
+    Demo(DemoArgs),
+    /// Serve the playground page on 127.0.0.1: draw curves, morph, scrub, download.
     ///
     /// An HTTP server bound to 127.0.0.1 only, serving one self-contained
     /// page (embedded in the binary; no network is used) and a JSON API

@@ -21,9 +21,7 @@
 //! the page and the reference curves are compiled in.
 
 use crate::Outcome;
-use crate::args::{
-    CorrespondenceArg, CountsArg, IntermediateArg, PathArg, QualityArg, ServeArgs,
-};
+use crate::args::{CorrespondenceArg, CountsArg, IntermediateArg, PathArg, QualityArg, ServeArgs};
 use crate::output;
 use clap::ValueEnum;
 use immerse::curve::Format;
@@ -58,6 +56,12 @@ pub(crate) const MAX_CURVES: usize = 8;
 pub(crate) const MAX_SIDE: u32 = 2048;
 /// Most requests handled at once; more get HTTP 503 at once.
 pub(crate) const MAX_CONNECTIONS: usize = 32;
+/// A body declared longer than this is not answered: tiny_http 0.12
+/// discards an unread body by allocating a buffer of its remaining declared
+/// length, which for an absurd `Content-Length` would abort the process.
+/// Such a request is dropped unanswered instead (its connection stays open
+/// until the server stops). Bodies up to this size get HTTP 413.
+const MAX_DECLARED_BODY: usize = 1 << 30;
 /// Finished morphs kept for their frame and download URLs (oldest dropped).
 pub(crate) const MAX_STORED_JOBS: usize = 16;
 
@@ -152,6 +156,10 @@ pub(crate) fn run(args: &ServeArgs) -> anyhow::Result<Outcome> {
                 break;
             }
         };
+        if request.body_length().is_some_and(|n| n > MAX_DECLARED_BODY) {
+            std::mem::forget(request);
+            continue;
+        }
         if state.connections.fetch_add(1, Ordering::SeqCst) >= MAX_CONNECTIONS {
             state.connections.fetch_sub(1, Ordering::SeqCst);
             let _ = request.respond(error_response(&ApiError::new(
@@ -728,8 +736,8 @@ fn plan(req: MorphRequest) -> Result<Plan, ApiError> {
 fn compute(plan: &Plan) -> Result<Morph, ApiError> {
     let mut tweens = Vec::with_capacity(plan.curves.len() - 1);
     for (i, pair) in plan.curves.windows(2).enumerate() {
-        let tween = Tween::new(&pair[0].points, &pair[1].points, &plan.options).map_err(|e| {
-            match e {
+        let tween =
+            Tween::new(&pair[0].points, &pair[1].points, &plan.options).map_err(|e| match e {
                 CurveMorphError::NotSelfOverlapping { side, reason } => {
                     let k = match side {
                         immerse::morph::Side::Source => i + 1,
@@ -738,8 +746,7 @@ fn compute(plan: &Plan) -> Result<Morph, ApiError> {
                     ApiError::bad(format!("curve {k} is not self-overlapping: {reason}"))
                 }
                 other => ApiError::new(500, format!("the morph failed: {other}")),
-            }
-        })?;
+            })?;
         tweens.push(tween);
     }
     let fail = |e: immerse::morph::MorphError| ApiError::new(500, format!("the morph failed: {e}"));
@@ -768,7 +775,10 @@ fn compute(plan: &Plan) -> Result<Morph, ApiError> {
             }
         }
         fallbacks.extend(t.report().fallbacks.iter().map(|f| {
-            Fallback::new(&format!("curves {} to {}: {}", i + 1, i + 2, f.what), &f.why)
+            Fallback::new(
+                &format!("curves {} to {}: {}", i + 1, i + 2, f.what),
+                &f.why,
+            )
         }));
     }
     let mut frames = Vec::with_capacity(plan.times.len());
@@ -822,7 +832,10 @@ fn morph(state: &Arc<State>, body: &[u8]) -> Result<Reply, ApiError> {
             let _ = tx.send(result);
         });
     if worker.is_err() {
-        return Err(ApiError::new(503, "cannot start a worker thread; try again"));
+        return Err(ApiError::new(
+            503,
+            "cannot start a worker thread; try again",
+        ));
     }
     let (morph, plan) = match rx.recv_timeout(state.timeout) {
         Ok(result) => result?,
@@ -910,11 +923,9 @@ fn job_file(state: &Arc<State>, path: &str, query: &str) -> Result<Reply, ApiErr
         .and_then(|f| f.strip_suffix(".png"))
     {
         let n = job.frames.len();
-        let k: usize = k
-            .parse()
-            .ok()
-            .filter(|&k| k < n)
-            .ok_or_else(|| ApiError::new(404, format!("no frame {k}: frames are 0 to {}", n - 1)))?;
+        let k: usize = k.parse().ok().filter(|&k| k < n).ok_or_else(|| {
+            ApiError::new(404, format!("no frame {k}: frames are 0 to {}", n - 1))
+        })?;
         let ghosts: Vec<&render::Frame> = if job.style.onion_skin && n > 1 {
             vec![&job.frames[0], &job.frames[n - 1]]
         } else {

@@ -461,7 +461,7 @@ mod tests {
             &frames.iter().map(|f| f.points.clone()).collect::<Vec<_>>(),
             1.0,
         );
-        assert_eq!(keys, vec![0, 1, 3]);
+        assert_eq!(keys, vec![0, 1, 2, 3]);
         let doc = parse(&lottie(&frames, &Style::DEFAULT, 10.0, Loop::Loop).unwrap());
         let k = &doc["layers"][0]["shapes"][0]["it"][0]["ks"]["k"];
         assert_eq!(k[1]["h"], 1);

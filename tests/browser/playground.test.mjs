@@ -76,7 +76,7 @@ before(async () => {
       "--disable-background-networking", "--disable-component-update", "--disable-sync",
       "--force-color-profile=srgb",
     ],
-    viewport: { width: 1180, height: 860 },
+    viewport: { width: 1180, height: 900 },
     deviceScaleFactor: 1,
     timeout: 60000,
   });
@@ -113,11 +113,11 @@ function ellipse(cx, cy, rx, ry, n) {
   });
 }
 
-/** A strip winding 400° around a centre, overlapping itself where its
+/** A strip winding 470° around a centre, overlapping itself where its
  * ends meet: self-overlapping but not simple. */
 function curlStrip(cx, cy) {
   const out = [];
-  const total = (400 * Math.PI) / 180;
+  const total = (470 * Math.PI) / 180;
   const steps = 70;
   const outer = (t) => 150 + 40 * (t / total);
   for (let i = 0; i <= steps; i++) {

@@ -208,7 +208,32 @@ fn serve_morphs_like_the_cli_and_serves_the_page() {
     assert_eq!(status, 200, "{reply}");
     let frames = reply["morph"]["frames"].as_array().unwrap();
     assert_eq!(frames.len(), 9);
-    // It ends on the first curve (its vertices, perhaps starting elsewhere).
+    // Every frame has one vertex count, and vertex i runs on across the
+    // middle key: the frames are continuous there (no jump of a vertex
+    // much larger than between other frames).
+    let n = frames[0]["points"].as_array().unwrap().len();
+    assert!(
+        frames
+            .iter()
+            .all(|f| f["points"].as_array().unwrap().len() == n)
+    );
+    let step = |f: &serde_json::Value, g: &serde_json::Value| {
+        let (p, q) = (
+            f["points"].as_array().unwrap(),
+            g["points"].as_array().unwrap(),
+        );
+        p.iter()
+            .zip(q)
+            .map(|(a, b)| {
+                let d = |k: usize| a[k].as_f64().unwrap() - b[k].as_f64().unwrap();
+                d(0).hypot(d(1))
+            })
+            .fold(0.0_f64, f64::max)
+    };
+    let steps: Vec<f64> = frames.windows(2).map(|w| step(&w[0], &w[1])).collect();
+    let mean = steps.iter().sum::<f64>() / steps.len() as f64;
+    assert!(steps.iter().all(|&s| s < 3.0 * mean), "{steps:?}");
+    // It ends on the first curve, vertex for vertex up to a relabelling.
     let sorted = |v: &serde_json::Value| {
         let mut p: Vec<String> = v
             .as_array()
@@ -220,6 +245,8 @@ fn serve_morphs_like_the_cli_and_serves_the_page() {
         p
     };
     assert_eq!(sorted(&frames[0]["points"]), sorted(&frames[8]["points"]));
+    let (status, svg) = server.get(reply["urls"]["svg"].as_str().unwrap());
+    assert_eq!(status, 200, "{}", String::from_utf8_lossy(&svg));
 
     // Checking curves: drawn points, and the text of an SVG file.
     let (status, check) = server.post("/api/check", &serde_json::json!({"points": points_of(a)}));

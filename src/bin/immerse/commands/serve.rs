@@ -24,6 +24,7 @@ use crate::Outcome;
 use crate::args::{CorrespondenceArg, CountsArg, IntermediateArg, PathArg, QualityArg, ServeArgs};
 use crate::output;
 use clap::ValueEnum;
+use immerse::correspond::{insert_vertices, resample_arc_length, shift_triangles};
 use immerse::curve::Format;
 use immerse::frames::{Fallback, Morph};
 use immerse::geom::polygon;
@@ -731,22 +732,37 @@ fn plan(req: MorphRequest) -> Result<Plan, ApiError> {
 
 /// Runs the morph of a plan: one [`Tween`] per consecutive pair; with two
 /// curves the frames are exactly those of `immerse morph` with the same
-/// options. With more, the eased times run across the whole chain, each
-/// pair getting a share proportional to its vertex travel.
+/// options. With more, every curve is first brought to the largest vertex
+/// count (as `counts` says), each pair's frames are relabelled so that
+/// vertex `i` runs on where the previous pair left it, and the eased times
+/// run across the whole chain, each pair getting a share proportional to
+/// its vertex travel: every frame has the same vertex count and the frames
+/// meet exactly at each key.
 fn compute(plan: &Plan) -> Result<Morph, ApiError> {
-    let mut tweens = Vec::with_capacity(plan.curves.len() - 1);
-    for (i, pair) in plan.curves.windows(2).enumerate() {
-        let tween =
-            Tween::new(&pair[0].points, &pair[1].points, &plan.options).map_err(|e| match e {
-                CurveMorphError::NotSelfOverlapping { side, reason } => {
-                    let k = match side {
-                        immerse::morph::Side::Source => i + 1,
-                        immerse::morph::Side::Target => i + 2,
-                    };
-                    ApiError::bad(format!("curve {k} is not self-overlapping: {reason}"))
-                }
-                other => ApiError::new(500, format!("the morph failed: {other}")),
-            })?;
+    let n = plan.curves.iter().map(Curve::len).max().unwrap_or(0);
+    let keys: Vec<Vec<Point>> = if plan.curves.len() == 2 {
+        plan.curves.iter().map(|c| c.points.clone()).collect()
+    } else {
+        plan.curves
+            .iter()
+            .map(|c| match plan.options.counts {
+                Counts::Resample => resample_arc_length(&c.points, n),
+                _ => insert_vertices(&c.points, n - c.len()).0,
+            })
+            .collect()
+    };
+    let mut tweens = Vec::with_capacity(keys.len() - 1);
+    for (i, pair) in keys.windows(2).enumerate() {
+        let tween = Tween::new(&pair[0], &pair[1], &plan.options).map_err(|e| match e {
+            CurveMorphError::NotSelfOverlapping { side, reason } => {
+                let k = match side {
+                    immerse::morph::Side::Source => i + 1,
+                    immerse::morph::Side::Target => i + 2,
+                };
+                ApiError::bad(format!("curve {k} is not self-overlapping: {reason}"))
+            }
+            other => ApiError::new(500, format!("the morph failed: {other}")),
+        })?;
         tweens.push(tween);
     }
     let fail = |e: immerse::morph::MorphError| ApiError::new(500, format!("the morph failed: {e}"));
@@ -765,6 +781,16 @@ fn compute(plan: &Plan) -> Result<Morph, ApiError> {
     for s in &shares {
         starts.push(acc);
         acc += s;
+    }
+    // Pair k starts where pair k-1 ended: its vertex i is the chain's
+    // vertex i - offset[k].
+    let mut offsets = Vec::with_capacity(tweens.len());
+    let mut offset = 0;
+    for t in &tweens {
+        offsets.push(offset);
+        if t.vertex_count() > 0 {
+            offset = (offset + t.report().shift) % t.vertex_count();
+        }
     }
     let mut paths: Vec<ThirdVertexPath> = Vec::new();
     let mut fallbacks: Vec<Fallback> = Vec::new();
@@ -790,19 +816,22 @@ fn compute(plan: &Plan) -> Result<Morph, ApiError> {
             .rposition(|&s| s <= u && u > 0.0)
             .unwrap_or(0)
             .min(tweens.len() - 1);
-        let local = if shares[k] > 0.0 {
+        let local = if u >= 1.0 && k == tweens.len() - 1 {
+            1.0
+        } else if shares[k] > 0.0 {
             ((u - starts[k]) / shares[k]).clamp(0.0, 1.0)
         } else {
             1.0
         };
-        let local = if u >= 1.0 && k == tweens.len() - 1 {
-            1.0
-        } else {
-            local
-        };
-        let mut f = tweens[k].frame(local).map_err(fail)?;
-        f.t = u;
-        frames.push(f);
+        let f = tweens[k].frame(local).map_err(fail)?;
+        let m = f.points.len();
+        // Chain vertex i is vertex i + offset of this pair.
+        let c = offsets[k] % m.max(1);
+        frames.push(immerse::frames::Frame {
+            t: u,
+            points: (0..m).map(|i| f.points[(i + c) % m]).collect(),
+            triangles: shift_triangles(m, &f.triangles, c),
+        });
     }
     Ok(Morph {
         paths,

@@ -212,6 +212,13 @@ test("playground: draw two curves, morph, scrub; the canvas is immerse morph's P
   assert.equal(await page.isDisabled("#run"), true, "Morph is disabled while a curve cannot be morphed");
   await page.locator("#curves li:nth-child(3) button[title=remove]").click();
 
+  // Loading a curve file (SVG here) works the same way.
+  await page.setInputFiles("#file", join(root, "curves/tail-loop.svg"));
+  await page.waitForSelector("#curves li:nth-child(3)[data-status=ok]", { timeout: 20000 });
+  assert.equal(await page.locator("#curves li:nth-child(3) .name").textContent(), "3. tail-loop");
+  await page.locator("#curves li:nth-child(3) button[title=remove]").click();
+  assert.equal(await page.locator("#curves li").count(), 2);
+
   await page.fill("#opt-frames", String(FRAMES));
   const t0 = Date.now();
   await page.click("#run");

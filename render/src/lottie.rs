@@ -169,7 +169,7 @@ fn round2(v: f64) -> f64 {
 /// # Errors
 ///
 /// [`RenderError::NoFrames`], [`RenderError::BadFps`], a size error,
-/// [`RenderError::OutlineMismatch`] for a frame with an empty outline,
+/// [`RenderError::EmptyOutline`] for a frame without an outline,
 /// [`RenderError::InFrame`] for a bad index or a non-finite outline point.
 pub fn lottie(
     frames: &[Frame],
@@ -177,19 +177,15 @@ pub fn lottie(
     fps: f64,
     looping: Loop,
 ) -> Result<String, RenderError> {
-    let Some(first) = frames.first() else {
+    if frames.is_empty() {
         return Err(RenderError::NoFrames);
-    };
+    }
     check_fps(fps)?;
     style.check_size()?;
     for (i, f) in frames.iter().enumerate() {
         f.check_indices().map_err(|e| e.in_frame(i))?;
         if f.outline.is_empty() {
-            return Err(RenderError::OutlineMismatch {
-                frame: i,
-                expected: first.outline.len(),
-                found: 0,
-            });
+            return Err(RenderError::EmptyOutline { frame: i });
         }
     }
     let view = View::fit(frames, style);
@@ -481,6 +477,12 @@ mod tests {
         assert!(matches!(
             lottie(&frames, &style, 0.0, Loop::Loop),
             Err(RenderError::BadFps { .. })
+        ));
+        let mut bare = frames.clone();
+        bare[1].outline.clear();
+        assert!(matches!(
+            lottie(&bare, &style, 12.0, Loop::Loop),
+            Err(RenderError::EmptyOutline { frame: 1 })
         ));
         let mut bad = frames.clone();
         bad[2].points[1] = [f64::NAN, 0.0];

@@ -266,7 +266,7 @@ fn serve_morphs_like_the_cli_and_serves_the_page() {
 
 #[test]
 fn serve_bounds_requests_with_json_errors() {
-    let server = Server::start(&["--max-jobs", "1", "--job-delay-ms", "2000"]);
+    let server = Server::start(&["--max-jobs", "1", "--job-delay-ms", "3000"]);
     let a = points_of("spiral-strip-400deg-n30.json");
     let b = points_of("curl-strip-n10.json");
     let ok = serde_json::json!({"curves": [a, b], "frames": 3});
@@ -358,7 +358,7 @@ fn serve_bounds_requests_with_json_errors() {
         );
         raw_request(port, head.as_bytes(), body.as_bytes())
     });
-    std::thread::sleep(Duration::from_millis(500));
+    std::thread::sleep(Duration::from_millis(1000));
     let (status, v) = server.post("/api/morph", &ok);
     assert_eq!(status, 429, "{v}");
     assert!(
@@ -368,7 +368,7 @@ fn serve_bounds_requests_with_json_errors() {
     let t = Instant::now();
     assert_eq!(server.get("/api/limits").0, 200);
     assert!(
-        t.elapsed() < Duration::from_secs(1),
+        t.elapsed() < Duration::from_millis(1500),
         "a running morph blocked a request"
     );
     let (status, body) = first.join().unwrap();

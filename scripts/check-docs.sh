@@ -47,6 +47,9 @@ skip=(
   'scripts/peer-compare.sh*|needs node, npm and the npm registry (installs flubber into a temporary folder)'
   'cargo run --release --example make_pairs*|rewrites curves/pairs/ in the repository itself (the example writes under CARGO_MANIFEST_DIR)'
   'cargo run --release --example peer_check*|needs the flubber frames that scripts/peer-compare.sh makes (node, npm)'
+  'cargo run --release -- serve*|starts the playground server, which runs until Ctrl-C (tests/integration/web.rs and scripts/browser-test.sh test it)'
+  'immerse serve*|starts the playground server, which runs until Ctrl-C (tests/integration/web.rs and scripts/browser-test.sh test it)'
+  'scripts/browser-test.sh*|the browser test: installs chromium (apt) and npm packages; .ci/run runs it'
 )
 
 die() { echo "check-docs: $*" >&2; exit 2; }

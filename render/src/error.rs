@@ -69,6 +69,12 @@ pub enum RenderError {
         /// Outline length of `frame`.
         found: usize,
     },
+    /// A Lottie animation draws each frame's outline, and this one has none.
+    #[error("frame {frame} has no outline; a lottie animation draws the outline of every frame")]
+    EmptyOutline {
+        /// The first frame without an outline.
+        frame: usize,
+    },
     /// The frame rate is not a positive finite number.
     #[error("frame rate {fps} is not a positive number of frames per second")]
     BadFps {

@@ -14,6 +14,7 @@
 //!          ──> render (tiny-skia; depth-shaded fill, wireframe, outline, onion skin)
 //!          ──> encode_png / write_png_sequence / write_gif (rayon in parallel)
 //!          ──> svg_frame / write_svg_sequence / write_animated_svg (SMIL)
+//!          ──> lottie / write_lottie (one shape layer, path keyframes)
 //! ```
 //!
 //! Writers never overwrite silently: [`check_output_dir`] and
@@ -56,6 +57,7 @@
 mod easing;
 mod error;
 mod frame;
+mod lottie;
 mod output;
 mod raster;
 mod style;
@@ -65,10 +67,11 @@ mod view;
 pub use easing::{Easing, frame_times};
 pub use error::RenderError;
 pub use frame::Frame;
+pub use lottie::{LOTTIE_TOLERANCE_PX, lottie, write_lottie};
 pub use output::{
     Destination, GIF_MAX_FPS, Loop, NewOutputDir, Output, OutputFile, check_gif_fps,
     check_output_dir, check_output_file, contact_sheet, contact_sheet_columns, contact_sheet_size,
-    frame_file_name, is_stdout, remove_partial_outputs, resolve_output, write_atomic,
+    encode_gif, frame_file_name, is_stdout, remove_partial_outputs, resolve_output, write_atomic,
     write_contact_sheet, write_gif, write_png_sequence,
 };
 pub use raster::{encode_png, render};

@@ -856,11 +856,69 @@ pub fn write_gif(
     opts: &Output,
     progress: &(dyn Fn(usize) + Sync),
 ) -> Result<(), RenderError> {
+    check_gif(frames, style, fps)?;
+    let out = OutputFile::create(path, opts.force)?;
+    let gif_error = |e: gif::EncodingError| match e {
+        gif::EncodingError::Io(io) => RenderError::io(path, os_error(io)),
+        other => RenderError::Gif(other),
+    };
+    encode_gif_into(out, frames, style, fps, looping, opts, progress, &gif_error)?.finish()
+}
+
+/// The GIF that [`write_gif`] writes, in memory (for a server; `opts.force`
+/// is not used).
+///
+/// # Errors
+///
+/// As [`write_gif`], without the output-safety errors.
+pub fn encode_gif(
+    frames: &[Frame],
+    style: &Style,
+    fps: f64,
+    looping: Loop,
+    opts: &Output,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<Vec<u8>, RenderError> {
+    check_gif(frames, style, fps)?;
+    encode_gif_into(
+        Vec::new(),
+        frames,
+        style,
+        fps,
+        looping,
+        opts,
+        progress,
+        &RenderError::Gif,
+    )
+}
+
+/// What can be known about a GIF before rendering a frame.
+fn check_gif(frames: &[Frame], style: &Style, fps: f64) -> Result<(), RenderError> {
     if frames.is_empty() {
         return Err(RenderError::NoFrames);
     }
     check_gif_fps(fps)?;
-    style.check_size()?;
+    style.check_size()
+}
+
+/// The one GIF encoder: renders and quantises the frames in parallel
+/// batches and writes them to `out` in order (ping-pong plays the frames
+/// back without repeating the ends), with delays that keep the average
+/// rate exact; returns `out`.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the frames, their style and timing, and where they go"
+)]
+fn encode_gif_into<W: Write>(
+    out: W,
+    frames: &[Frame],
+    style: &Style,
+    fps: f64,
+    looping: Loop,
+    opts: &Output,
+    progress: &(dyn Fn(usize) + Sync),
+    gif_error: &dyn Fn(gif::EncodingError) -> RenderError,
+) -> Result<W, RenderError> {
     let too_large = || RenderError::ImageTooLarge {
         width: style.width,
         height: style.height,
@@ -871,12 +929,6 @@ pub fn write_gif(
     let speed = opts.gif_speed.clamp(1, 30);
     let view = View::fit(frames, style);
     let ghosts = onion(frames, style);
-
-    let out = OutputFile::create(path, opts.force)?;
-    let gif_error = |e: gif::EncodingError| match e {
-        gif::EncodingError::Io(io) => RenderError::io(path, os_error(io)),
-        other => RenderError::Gif(other),
-    };
     let mut encoder = gif::Encoder::new(out, w, h, &[]).map_err(gif_error)?;
     if looping != Loop::Once {
         encoder
@@ -918,7 +970,7 @@ pub fn write_gif(
             progress(done.fetch_add(1, Ordering::Relaxed) + 1);
         }
     }
-    encoder.into_inner().map_err(gif_error)?.finish()
+    encoder.into_inner().map_err(gif_error)
 }
 
 pub(crate) fn check_fps(fps: f64) -> Result<(), RenderError> {

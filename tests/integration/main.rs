@@ -17,3 +17,4 @@ mod properties;
 mod sequence;
 mod stress;
 mod util;
+mod web;

@@ -369,7 +369,7 @@ fn one_rule_for_image_outputs() {
     let d = tempfile::tempdir().unwrap();
     let t = tri();
     let dp = Some(d.path());
-    let formats = "name a .gif, .svg (animated) or .png (contact sheet) file, or a folder (no extension, or ending in /) for PNG frames";
+    let formats = "name a .gif, .svg (animated), .png (contact sheet) or .lottie.json file, or a folder (no extension, or ending in /) for PNG frames";
     for (out, ext) in [("anim.mp4", "mp4"), ("out.jpg", "jpg")] {
         assert_stderr(
             dp,
@@ -382,7 +382,7 @@ fn one_rule_for_image_outputs() {
         dp,
         &["morph", &t, &t, "--frames", "2", "-o", "-"],
         2,
-        "immerse: -o -: standard output takes one file; add --format gif, animated-svg or sheet",
+        "immerse: -o -: standard output takes one file; add --format gif, animated-svg, sheet or lottie",
     );
     assert_stderr(
         dp,

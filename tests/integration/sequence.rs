@@ -386,7 +386,12 @@ fn animate_writes_every_frame_with_keys_at_their_frame_numbers() {
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("seq.json")).unwrap())
             .unwrap();
-    assert_eq!(v["path"], "hybrid");
+    // The default path (the last legs may take hybrid where it travels less).
+    let path = v["path"].as_str().unwrap();
+    assert!(
+        path.split('+').all(|p| p == "straight" || p == "hybrid"),
+        "{path}"
+    );
     let frames = v["frames"].as_array().unwrap();
     assert_eq!(frames.len(), 61);
     let keys = v["keys"].as_array().unwrap();

@@ -85,6 +85,16 @@ pub(crate) enum Command {
         after_help = "Examples:\n  immerse animate a.svg b.svg c.svg -o seq.gif\n  immerse animate keys.svg --frames 90 --json seq.json\n  immerse animate --timeline curves/sequence/ribbon-loops.json -o seq.gif -o sheet.png"
     )]
     Animate(AnimateArgs),
+    /// Serve the playground page on 127.0.0.1: draw curves, morph, scrub, download.
+    ///
+    /// An HTTP server bound to 127.0.0.1 only, serving one self-contained
+    /// page (embedded in the binary; no network is used) and a JSON API
+    /// (POST /api/morph, POST /api/check; see the README). Request sizes,
+    /// points, frames and concurrent jobs are bounded. Stops on Ctrl-C.
+    #[command(
+        after_help = "Examples:\n  immerse serve\n  immerse serve --port 0 --open\n  immerse serve --port 8080 --max-jobs 4"
+    )]
+    Serve(ServeArgs),
 }
 
 /// Which shapes of one SVG drawing are the keys.
@@ -130,7 +140,7 @@ pub(crate) struct AnimateArgs {
     #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
     pub(crate) hold: Option<f64>,
     /// How each triangle's third vertex travels.
-    #[arg(long, value_enum, default_value_t = PathArg::Hybrid)]
+    #[arg(long, value_enum, default_value_t = PathArg::Straight)]
     pub(crate) path: PathArg,
     /// Triangulation quality of each key.
     #[arg(long, value_enum, default_value_t = QualityArg::Delaunay)]
@@ -139,7 +149,7 @@ pub(crate) struct AnimateArgs {
     #[arg(long, value_enum, default_value_t = IntermediateArg::Target)]
     pub(crate) intermediate: IntermediateArg,
     /// How vertices of consecutive keys without shape hints are matched.
-    #[arg(long, value_enum, default_value_t = CorrespondenceArg::MinFlips)]
+    #[arg(long, value_enum, default_value_t = CorrespondenceArg::Best)]
     pub(crate) correspondence: CorrespondenceArg,
     /// Write every frame as JSON (the format of morph --json, with the
     /// keys' frame numbers and the speeds at them) to FILE; bare --json,
@@ -178,6 +188,26 @@ pub(crate) struct AnimateArgs {
     /// No progress bars or notices on stderr.
     #[arg(short, long)]
     pub(crate) quiet: bool,
+}
+
+/// Arguments of `immerse serve`.
+#[derive(Debug, Args)]
+pub(crate) struct ServeArgs {
+    /// Port on 127.0.0.1; 0 picks a free one. The URL is printed on stdout.
+    #[arg(long, default_value_t = 7878)]
+    pub(crate) port: u16,
+    /// Open the page in the default browser.
+    #[arg(long)]
+    pub(crate) open: bool,
+    /// Most morphs (and other heavy jobs) running at once; more get HTTP 429.
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub(crate) max_jobs: u32,
+    /// Seconds a request waits for its morph before answering HTTP 503.
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    pub(crate) job_timeout: u64,
+    /// For tests: every job sleeps this many milliseconds before it starts.
+    #[arg(long, default_value_t = 0, hide = true)]
+    pub(crate) job_delay_ms: u64,
 }
 
 /// Mesh morph method.
@@ -370,6 +400,8 @@ pub(crate) enum FormatArg {
     AnimatedSvg,
     /// One PNG with every frame side by side (a contact sheet).
     Sheet,
+    /// One Lottie JSON animation (one shape layer, path keyframes); also for -o NAME.lottie.json.
+    Lottie,
 }
 
 /// How vertex counts are matched.

@@ -6,6 +6,7 @@ mod check;
 mod demo;
 mod mesh_morph;
 mod morph;
+mod serve;
 mod triangulate;
 
 use crate::Outcome;
@@ -25,6 +26,7 @@ pub(crate) fn run(cli: Cli) -> anyhow::Result<Outcome> {
         Command::Demo(args) => demo::run(&args),
         Command::MeshMorph(args) => mesh_morph::run(&args),
         Command::Animate(args) => animate::run(&args),
+        Command::Serve(args) => serve::run(&args),
     }
 }
 
@@ -143,6 +145,7 @@ impl FormatArg {
             FormatArg::Gif => Some("gif"),
             FormatArg::AnimatedSvg => Some("svg"),
             FormatArg::Sheet => Some("png"),
+            FormatArg::Lottie => Some("lottie.json"),
             FormatArg::Png | FormatArg::Svg => None,
         }
     }
@@ -154,6 +157,7 @@ impl FormatArg {
             FormatArg::Svg => "svg",
             FormatArg::AnimatedSvg => "animated-svg",
             FormatArg::Sheet => "sheet",
+            FormatArg::Lottie => "lottie",
         }
     }
 }
@@ -166,7 +170,7 @@ impl FormatArg {
 pub(crate) fn image_format(asked: Option<FormatArg>, out: &Path) -> anyhow::Result<FormatArg> {
     let shown = out.display();
     let text = out.to_string_lossy();
-    let file_formats = "name a .gif, .svg (animated) or .png (contact sheet) file, or a folder (no extension, or ending in /) for PNG frames";
+    let file_formats = "name a .gif, .svg (animated), .png (contact sheet) or .lottie.json file, or a folder (no extension, or ending in /) for PNG frames";
     if immerse_render::is_stdout(out) {
         return match asked {
             Some(f) if f.file_extension().is_some() => Ok(f),
@@ -175,13 +179,20 @@ pub(crate) fn image_format(asked: Option<FormatArg>, out: &Path) -> anyhow::Resu
                 f.name()
             ),
             None => anyhow::bail!(
-                "-o {shown}: standard output takes one file; add --format gif, animated-svg or sheet"
+                "-o {shown}: standard output takes one file; add --format gif, animated-svg, sheet or lottie"
             ),
         };
     }
     let folder = text.ends_with('/') || text.ends_with(std::path::MAIN_SEPARATOR);
+    let lottie = out.file_name().is_some_and(|n| {
+        n.to_string_lossy()
+            .to_ascii_lowercase()
+            .ends_with(".lottie.json")
+    });
     let ext = if folder {
         None
+    } else if lottie {
+        Some("lottie.json".to_string())
     } else {
         out.extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase())
@@ -200,10 +211,13 @@ pub(crate) fn image_format(asked: Option<FormatArg>, out: &Path) -> anyhow::Resu
             "gif" => Ok(FormatArg::Gif),
             "svg" => Ok(FormatArg::AnimatedSvg),
             "png" => Ok(FormatArg::Sheet),
+            "lottie.json" => Ok(FormatArg::Lottie),
             _ => anyhow::bail!("-o {shown}: unknown image type '.{e}'; {file_formats}"),
         },
         (Some(e), Some(f)) => match f.file_extension() {
             Some(want) if want == e => Ok(f),
+            // A Lottie animation is JSON: --format lottie takes any .json.
+            Some(_) if f == FormatArg::Lottie && e == "json" => Ok(f),
             Some(want) => anyhow::bail!(
                 "-o {shown}: --format {} writes a .{want} file, not .{e}; name the file .{want}",
                 f.name()
@@ -240,7 +254,7 @@ pub(crate) fn check_images(
             immerse_render::check_gif_fps(fps).with_context(|| format!("--fps {fps}"))?;
             check_output_file(out, force)?;
         }
-        FormatArg::AnimatedSvg => check_output_file(out, force)?,
+        FormatArg::AnimatedSvg | FormatArg::Lottie => check_output_file(out, force)?,
         FormatArg::Sheet => {
             immerse_render::contact_sheet_size(frames, style, columns)?;
             check_output_file(out, force)?;

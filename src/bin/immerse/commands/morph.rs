@@ -315,6 +315,7 @@ pub(crate) fn write_frames(
         FormatArg::Sheet => {
             render::write_contact_sheet(frames, out, style, images.columns, &opts)?;
         }
+        FormatArg::Lottie => render::write_lottie(frames, out, style, fps, looping, &opts)?,
     }
     bar.finish_and_clear();
     Ok(())

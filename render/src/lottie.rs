@@ -1,0 +1,494 @@
+//! Lottie output: one JSON animation with one shape layer whose path is
+//! keyframed, playable by lottie-web and the Lottie players of apps.
+//!
+//! The document (Lottie schema 5.7) has one shape layer (`ty` 4) holding,
+//! top to bottom:
+//!
+//! 1. the curve group: the animated outline path (`sh`, one closed
+//!    polyline with zero tangents), its stroke (`st`, round caps and joins
+//!    as in the PNGs), a fill in the background colour with the even-odd
+//!    rule (`fl`, `r` 2) and the fill colour with the nonzero rule (`fl`,
+//!    `r` 1);
+//! 2. with [`Style::onion_skin`], the first and last outlines as faint
+//!    static strokes (under the fill, unlike the PNGs, where they are above
+//!    it);
+//! 3. a background rectangle of the image size.
+//!
+//! **Overlap depth.** The nonzero fill covers every spot inside the curve,
+//! overlaps included, at the opacity of a spot covered *twice* in the PNGs
+//! (`1 - (1 - a)²` for layer alpha `a`); the even-odd fill on top lightens
+//! the spots of odd winding number back to the colour of a spot covered
+//! once. For an immersed disk the winding number is the covering depth, so
+//! depths 1 and 2 look exactly as in the PNGs (depth 3 looks like 1, as in
+//! the animated SVG), with one path and no masks or mattes. This needs an
+//! opaque background, which the background rectangle provides.
+//!
+//! **Keyframes.** Coordinates are pixels of the shared [`View`] (y down),
+//! rounded to 1/100 pixel. A keyframe is kept only where needed: the
+//! keyframes are chosen greedily so that linear interpolation between two
+//! consecutive keyframes puts every vertex of every frame in between within
+//! [`LOTTIE_TOLERANCE_PX`] of its true position. Where consecutive frames
+//! have different vertex counts (which a path cannot interpolate), the
+//! earlier keyframe holds (`h` 1). Triangles, wireframe, spine and markers
+//! are not drawn.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use crate::output::{check_fps, onion};
+use crate::{Frame, Loop, Output, RenderError, Rgba, Style, View, write_atomic};
+
+/// How far, in pixels, an interpolated vertex may be from its true position
+/// in any frame before another keyframe is written.
+pub const LOTTIE_TOLERANCE_PX: f64 = 1.0;
+
+/// Coordinates are written to 1/100 pixel: the keyframe reduction works on
+/// the rounded positions with the tolerance lowered by this much, so the
+/// played vertices stay within [`LOTTIE_TOLERANCE_PX`] of the exact ones.
+const ROUNDING_PX: f64 = 0.01;
+
+/// A number with at most two decimals and no trailing zeros.
+fn num(out: &mut String, v: f64) {
+    let r = (v * 100.0).round() / 100.0;
+    let r = if r == 0.0 { 0.0 } else { r };
+    let _ = write!(out, "{r}");
+}
+
+/// A colour as Lottie's `[r, g, b, a]` in 0..1.
+fn color(c: Rgba) -> String {
+    let f = |v: u8| {
+        let mut s = String::new();
+        let x = (f64::from(v) / 255.0 * 10_000.0).round() / 10_000.0;
+        let _ = write!(s, "{x}");
+        s
+    };
+    format!("[{},{},{},1]", f(c.r), f(c.g), f(c.b))
+}
+
+/// An opacity in 0..1 as Lottie's percentage.
+fn percent(o: f64) -> String {
+    let x = (o.clamp(0.0, 1.0) * 100_000.0).round() / 1000.0;
+    format!("{x}")
+}
+
+/// The static transform of a group or layer: identity.
+const GROUP_TRANSFORM: &str = r#"{"ty":"tr","nm":"Transform","p":{"a":0,"k":[0,0]},"a":{"a":0,"k":[0,0]},"s":{"a":0,"k":[100,100]},"r":{"a":0,"k":0},"o":{"a":0,"k":100},"sk":{"a":0,"k":0},"sa":{"a":0,"k":0}}"#;
+
+/// The closed polyline `pts` as a Lottie path value.
+fn path_value(out: &mut String, pts: &[[f64; 2]]) {
+    out.push_str("{\"c\":true,\"v\":[");
+    for (k, p) in pts.iter().enumerate() {
+        if k > 0 {
+            out.push(',');
+        }
+        out.push('[');
+        num(out, p[0]);
+        out.push(',');
+        num(out, p[1]);
+        out.push(']');
+    }
+    let zeros = vec!["[0,0]"; pts.len()].join(",");
+    let _ = write!(out, "],\"i\":[{zeros}],\"o\":[{zeros}]}}");
+}
+
+/// A stroke item.
+fn stroke(c: Rgba, width: f64) -> String {
+    let mut w = String::new();
+    num(&mut w, width);
+    format!(
+        "{{\"ty\":\"st\",\"nm\":\"Stroke\",\"c\":{{\"a\":0,\"k\":{}}},\"o\":{{\"a\":0,\"k\":{}}},\"w\":{{\"a\":0,\"k\":{w}}},\"lc\":2,\"lj\":2,\"ml\":4}}",
+        color(c),
+        percent(f64::from(c.a) / 255.0)
+    )
+}
+
+/// A fill item with rule `r` (1 nonzero, 2 even-odd).
+fn fill(name: &str, c: Rgba, opacity: f64, r: u8) -> String {
+    format!(
+        "{{\"ty\":\"fl\",\"nm\":\"{name}\",\"c\":{{\"a\":0,\"k\":{}}},\"o\":{{\"a\":0,\"k\":{}}},\"r\":{r}}}",
+        color(c),
+        percent(opacity)
+    )
+}
+
+/// The indices of the keyframes among `paths` (always the first and the
+/// last): greedily the farthest frame such that linear interpolation from
+/// the previous keyframe reproduces every frame in between within
+/// `tolerance` (largest vertex distance). A change of vertex count ends a
+/// span: the frame before the change becomes a keyframe.
+pub(crate) fn keyframes(paths: &[Vec<[f64; 2]>], tolerance: f64) -> Vec<usize> {
+    let n = paths.len();
+    if n == 0 {
+        return Vec::new();
+    }
+    let mut keys = vec![0];
+    let mut i = 0;
+    while i + 1 < n {
+        // The farthest j > i such that the span i..=j is reproduced.
+        let mut j = i + 1;
+        while j + 1 < n && span_ok(paths, i, j + 1, tolerance) {
+            j += 1;
+        }
+        keys.push(j);
+        i = j;
+    }
+    keys
+}
+
+/// Whether interpolating from `paths[i]` to `paths[j]` reproduces every
+/// frame strictly between within `tolerance`.
+fn span_ok(paths: &[Vec<[f64; 2]>], i: usize, j: usize, tolerance: f64) -> bool {
+    let (a, b) = (&paths[i], &paths[j]);
+    if (i..=j).any(|m| paths[m].len() != a.len()) {
+        return false;
+    }
+    let t2 = tolerance * tolerance;
+    (i + 1..j).all(|m| {
+        let s = (m - i) as f64 / (j - i) as f64;
+        paths[m].iter().zip(a.iter().zip(b)).all(|(p, (p0, p1))| {
+            let x = p0[0] + s * (p1[0] - p0[0]) - p[0];
+            let y = p0[1] + s * (p1[1] - p0[1]) - p[1];
+            x * x + y * y <= t2
+        })
+    })
+}
+
+/// Rounds to 1/100 as written.
+fn round2(v: f64) -> f64 {
+    let r = (v * 100.0).round() / 100.0;
+    if r == 0.0 { 0.0 } else { r }
+}
+
+/// One Lottie JSON document animating the outlines of `frames` at `fps`
+/// frames per second, `style.width` × `style.height` pixels, in the played
+/// order of `looping` ([`Loop::sequence`]). The whole animation is one
+/// shape layer (see the module docs for its items and how overlap depth is
+/// shaded); Lottie players loop by default, so [`Loop::Once`] and
+/// [`Loop::Loop`] give the same document.
+///
+/// # Errors
+///
+/// [`RenderError::NoFrames`], [`RenderError::BadFps`], a size error,
+/// [`RenderError::EmptyOutline`] for a frame without an outline,
+/// [`RenderError::InFrame`] for a bad index or a non-finite outline point.
+pub fn lottie(
+    frames: &[Frame],
+    style: &Style,
+    fps: f64,
+    looping: Loop,
+) -> Result<String, RenderError> {
+    if frames.is_empty() {
+        return Err(RenderError::NoFrames);
+    }
+    check_fps(fps)?;
+    style.check_size()?;
+    for (i, f) in frames.iter().enumerate() {
+        f.check_indices().map_err(|e| e.in_frame(i))?;
+        if f.outline.is_empty() {
+            return Err(RenderError::EmptyOutline { frame: i });
+        }
+    }
+    let view = View::fit(frames, style);
+    let pixel_outline = |f: &Frame| -> Result<Vec<[f64; 2]>, RenderError> {
+        f.outline
+            .iter()
+            .map(|&k| {
+                let [x, y] = view.to_pixel(f.points[k as usize]);
+                if x.is_finite() && y.is_finite() {
+                    Ok([round2(x), round2(y)])
+                } else {
+                    Err(RenderError::NonFinitePoint { index: k })
+                }
+            })
+            .collect()
+    };
+    let mut outlines = Vec::with_capacity(frames.len());
+    for (i, f) in frames.iter().enumerate() {
+        outlines.push(pixel_outline(f).map_err(|e| e.in_frame(i))?);
+    }
+    let played: Vec<Vec<[f64; 2]>> = looping
+        .sequence(frames.len())
+        .into_iter()
+        .map(|i| outlines[i].clone())
+        .collect();
+    let keys = keyframes(&played, LOTTIE_TOLERANCE_PX - ROUNDING_PX);
+    let total = played.len();
+
+    // The animated path.
+    let mut shape = String::from("{\"ty\":\"sh\",\"nm\":\"Outline\",\"ks\":");
+    if keys.len() == 1 {
+        shape.push_str("{\"a\":0,\"k\":");
+        path_value(&mut shape, &played[0]);
+        shape.push('}');
+    } else {
+        shape.push_str("{\"a\":1,\"k\":[");
+        for (k, &i) in keys.iter().enumerate() {
+            if k > 0 {
+                shape.push(',');
+            }
+            let _ = write!(shape, "{{\"t\":{i},\"s\":[");
+            path_value(&mut shape, &played[i]);
+            shape.push(']');
+            if let Some(&next) = keys.get(k + 1) {
+                if played[next].len() != played[i].len() {
+                    shape.push_str(",\"h\":1");
+                } else {
+                    shape.push_str(",\"i\":{\"x\":1,\"y\":1},\"o\":{\"x\":0,\"y\":0}");
+                }
+            }
+            shape.push('}');
+        }
+        shape.push_str("]}");
+    }
+    shape.push('}');
+
+    // Depth shading with two fills (module docs).
+    let once = style.depth_opacity(1.0);
+    let twice = style.depth_opacity(2.0);
+    let mut curve_items = vec![shape];
+    if style.outline_width > 0.0 {
+        curve_items.push(stroke(style.outline, f64::from(style.outline_width)));
+    }
+    if twice > 0.0 {
+        let lighten = 1.0 - once / twice;
+        if lighten > 0.0 {
+            curve_items.push(fill("Depth 1 (even-odd)", style.background, lighten, 2));
+        }
+        curve_items.push(fill("Fill (nonzero)", style.fill, twice, 1));
+    }
+    curve_items.push(GROUP_TRANSFORM.to_string());
+    let mut groups = vec![format!(
+        "{{\"ty\":\"gr\",\"nm\":\"Curve\",\"it\":[{}]}}",
+        curve_items.join(",")
+    )];
+
+    let ghosts = onion(frames, style);
+    if !ghosts.is_empty() {
+        let mut items = Vec::new();
+        for (k, g) in ghosts.iter().enumerate() {
+            let mut s = format!("{{\"ty\":\"sh\",\"nm\":\"Ghost {k}\",\"ks\":{{\"a\":0,\"k\":");
+            path_value(&mut s, &pixel_outline(g)?);
+            s.push_str("}}");
+            items.push(s);
+        }
+        items.push(stroke(style.onion_color, 1.0));
+        items.push(GROUP_TRANSFORM.to_string());
+        groups.push(format!(
+            "{{\"ty\":\"gr\",\"nm\":\"Onion skin\",\"it\":[{}]}}",
+            items.join(",")
+        ));
+    }
+
+    let (w, h) = (style.width, style.height);
+    groups.push(format!(
+        "{{\"ty\":\"gr\",\"nm\":\"Background\",\"it\":[{{\"ty\":\"rc\",\"nm\":\"Rectangle\",\"d\":1,\"p\":{{\"a\":0,\"k\":[{},{}]}},\"s\":{{\"a\":0,\"k\":[{w},{h}]}},\"r\":{{\"a\":0,\"k\":0}}}},{},{}]}}",
+        f64::from(w) / 2.0,
+        f64::from(h) / 2.0,
+        fill("Background", style.background, style.background.opacity(), 1),
+        GROUP_TRANSFORM
+    ));
+
+    let mut fr = String::new();
+    num(&mut fr, fps);
+    let layer_ks = r#"{"o":{"a":0,"k":100},"r":{"a":0,"k":0},"p":{"a":0,"k":[0,0,0]},"a":{"a":0,"k":[0,0,0]},"s":{"a":0,"k":[100,100,100]}}"#;
+    Ok(format!(
+        "{{\"v\":\"5.7.4\",\"nm\":\"immerse\",\"fr\":{fr},\"ip\":0,\"op\":{total},\"w\":{w},\"h\":{h},\"ddd\":0,\"assets\":[],\"layers\":[{{\"ddd\":0,\"ind\":1,\"ty\":4,\"nm\":\"immerse morph\",\"sr\":1,\"ks\":{layer_ks},\"ao\":0,\"ip\":0,\"op\":{total},\"st\":0,\"bm\":0,\"shapes\":[{}]}}],\"markers\":[]}}\n",
+        groups.join(",")
+    ))
+}
+
+/// Writes [`lottie`] to `path` with [`write_atomic`].
+///
+/// # Errors
+///
+/// As [`lottie`] and [`write_atomic`]; an existing `path` is refused
+/// without `opts.force` before anything is computed.
+pub fn write_lottie(
+    frames: &[Frame],
+    path: &Path,
+    style: &Style,
+    fps: f64,
+    looping: Loop,
+    opts: &Output,
+) -> Result<(), RenderError> {
+    if !opts.force && std::fs::symlink_metadata(path).is_ok() {
+        return Err(RenderError::FileExists { path: path.into() });
+    }
+    let json = lottie(frames, style, fps, looping)?;
+    write_atomic(path, json.as_bytes(), opts.force)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::Value;
+
+    /// A square turning by a quarter turn over `n` frames (vertices move
+    /// on arcs, so linear interpolation between far frames is off).
+    fn turning_square(n: usize) -> Vec<Frame> {
+        (0..n)
+            .map(|i| {
+                let a = i as f64 / (n - 1) as f64 * std::f64::consts::FRAC_PI_2;
+                let points = (0..4)
+                    .map(|k| {
+                        let t = a + k as f64 * std::f64::consts::FRAC_PI_2;
+                        [t.cos(), t.sin()]
+                    })
+                    .collect();
+                Frame::from_triangles(points, vec![[0, 1, 2], [0, 2, 3]])
+            })
+            .collect()
+    }
+
+    fn parse(json: &str) -> Value {
+        serde_json::from_str(json).expect("valid JSON")
+    }
+
+    #[test]
+    fn structure_is_one_shape_layer_with_path_keyframes() {
+        let frames = turning_square(31);
+        let style = Style::DEFAULT.with_size(320, 200).with_onion_skin(false);
+        let doc = parse(&lottie(&frames, &style, 24.0, Loop::Loop).unwrap());
+        assert_eq!(doc["fr"], 24.0);
+        assert_eq!(
+            (doc["w"].as_u64(), doc["h"].as_u64()),
+            (Some(320), Some(200))
+        );
+        assert_eq!(
+            (doc["ip"].as_f64(), doc["op"].as_f64()),
+            (Some(0.0), Some(31.0))
+        );
+        let layers = doc["layers"].as_array().unwrap();
+        assert_eq!(layers.len(), 1);
+        assert_eq!(layers[0]["ty"], 4);
+        let groups = layers[0]["shapes"].as_array().unwrap();
+        assert_eq!(groups.len(), 2, "curve and background");
+        let items = groups[0]["it"].as_array().unwrap();
+        let sh = &items[0];
+        assert_eq!(sh["ty"], "sh");
+        assert_eq!(sh["ks"]["a"], 1);
+        let keys = sh["ks"]["k"].as_array().unwrap();
+        assert!(keys.len() >= 2);
+        assert_eq!(keys[0]["t"], 0);
+        assert_eq!(keys.last().unwrap()["t"], 30);
+        for k in keys {
+            let s = &k["s"][0];
+            assert_eq!(s["c"], true);
+            let v = s["v"].as_array().unwrap();
+            assert_eq!(v.len(), 4);
+            assert_eq!(s["i"].as_array().unwrap().len(), 4);
+            assert_eq!(s["o"].as_array().unwrap().len(), 4);
+        }
+        let fills: Vec<&Value> = items.iter().filter(|i| i["ty"] == "fl").collect();
+        assert_eq!(fills.len(), 2);
+        // The fill of the curve is nonzero (1); the lightening one even-odd (2).
+        assert_eq!(fills.last().unwrap()["r"], 1);
+        assert_eq!(fills[0]["r"], 2);
+        assert!(items.iter().any(|i| i["ty"] == "st"));
+        assert_eq!(items.last().unwrap()["ty"], "tr");
+        let bg = groups[1]["it"].as_array().unwrap();
+        assert_eq!(bg[0]["ty"], "rc");
+        assert_eq!(bg[0]["s"]["k"], serde_json::json!([320, 200]));
+    }
+
+    /// Interpolating the written keyframes reproduces every frame within
+    /// one pixel, and fewer keyframes than frames are written.
+    #[test]
+    fn keyframe_reduction_stays_within_a_pixel() {
+        let frames = turning_square(121);
+        let style = Style::DEFAULT.with_size(512, 512).with_onion_skin(false);
+        let doc = parse(&lottie(&frames, &style, 30.0, Loop::Loop).unwrap());
+        let keys = doc["layers"][0]["shapes"][0]["it"][0]["ks"]["k"]
+            .as_array()
+            .unwrap()
+            .clone();
+        assert!(
+            keys.len() < 121 && keys.len() > 2,
+            "{} keyframes",
+            keys.len()
+        );
+        let view = View::fit(&frames, &style);
+        let at = |k: &Value| -> (f64, Vec<[f64; 2]>) {
+            let v = k["s"][0]["v"].as_array().unwrap();
+            (
+                k["t"].as_f64().unwrap(),
+                v.iter()
+                    .map(|p| [p[0].as_f64().unwrap(), p[1].as_f64().unwrap()])
+                    .collect(),
+            )
+        };
+        let mut worst: f64 = 0.0;
+        for (m, f) in frames.iter().enumerate() {
+            let m = m as f64;
+            let w = keys.windows(2).find(|w| at(&w[1]).0 >= m).unwrap();
+            let ((t0, p0), (t1, p1)) = (at(&w[0]), at(&w[1]));
+            let s = (m - t0) / (t1 - t0);
+            for (k, &i) in f.outline.iter().enumerate() {
+                let exact = view.to_pixel(f.points[i as usize]);
+                let x = p0[k][0] + s * (p1[k][0] - p0[k][0]);
+                let y = p0[k][1] + s * (p1[k][1] - p0[k][1]);
+                worst = worst.max(((x - exact[0]).powi(2) + (y - exact[1]).powi(2)).sqrt());
+            }
+        }
+        assert!(worst <= LOTTIE_TOLERANCE_PX, "worst {worst} px");
+        // A straight-line motion needs only its two ends.
+        let line: Vec<Frame> = (0..50)
+            .map(|i| {
+                let d = i as f64;
+                Frame::from_triangles(vec![[d, 0.0], [d + 10.0, 0.0], [d, 10.0]], vec![[0, 1, 2]])
+            })
+            .collect();
+        let doc = parse(&lottie(&line, &style, 30.0, Loop::Once).unwrap());
+        let keys = doc["layers"][0]["shapes"][0]["it"][0]["ks"]["k"]
+            .as_array()
+            .unwrap();
+        assert_eq!(keys.len(), 2);
+    }
+
+    #[test]
+    fn a_change_of_vertex_count_holds() {
+        let tri = Frame::from_triangles(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], vec![[0, 1, 2]]);
+        let quad = Frame::from_triangles(
+            vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+            vec![[0, 1, 2], [0, 2, 3]],
+        );
+        let frames = vec![tri.clone(), tri, quad.clone(), quad];
+        let keys = keyframes(
+            &frames.iter().map(|f| f.points.clone()).collect::<Vec<_>>(),
+            1.0,
+        );
+        assert_eq!(keys, vec![0, 1, 2, 3]);
+        let doc = parse(&lottie(&frames, &Style::DEFAULT, 10.0, Loop::Loop).unwrap());
+        let k = &doc["layers"][0]["shapes"][0]["it"][0]["ks"]["k"];
+        assert_eq!(k[1]["h"], 1);
+    }
+
+    #[test]
+    fn ping_pong_plays_back_and_bad_input_is_refused() {
+        let frames = turning_square(5);
+        let style = Style::DEFAULT.with_onion_skin(true);
+        let doc = parse(&lottie(&frames, &style, 12.0, Loop::PingPong).unwrap());
+        assert_eq!(doc["op"], 8);
+        assert_eq!(doc["layers"][0]["shapes"].as_array().unwrap().len(), 3);
+        assert!(matches!(
+            lottie(&[], &style, 12.0, Loop::Loop),
+            Err(RenderError::NoFrames)
+        ));
+        assert!(matches!(
+            lottie(&frames, &style, 0.0, Loop::Loop),
+            Err(RenderError::BadFps { .. })
+        ));
+        let mut bare = frames.clone();
+        bare[1].outline.clear();
+        assert!(matches!(
+            lottie(&bare, &style, 12.0, Loop::Loop),
+            Err(RenderError::EmptyOutline { frame: 1 })
+        ));
+        let mut bad = frames.clone();
+        bad[2].points[1] = [f64::NAN, 0.0];
+        assert!(matches!(
+            lottie(&bad, &style, 12.0, Loop::Loop),
+            Err(RenderError::InFrame { frame: 2, .. })
+        ));
+    }
+}

@@ -1,0 +1,325 @@
+// Browser test of the playground (`immerse serve`) and of immerse's Lottie
+// output, in Debian's Chromium driven by playwright-core. Run it with
+// scripts/browser-test.sh, which installs what it needs.
+//
+// 1. Starts `immerse serve --port 0`, draws two curves with mouse events,
+//    runs the morph, scrubs to a frame and compares the canvas with the PNG
+//    that `immerse morph` renders for the same curves and frame. The page
+//    draws the server's PNG, so the two must agree to the pixel (the
+//    tolerance of 2 per channel only absorbs a browser's image decoding).
+// 2. Loads the `--format lottie` file of the same morph in lottie-web on a
+//    test page and compares a rendered frame with immerse's PNG of it.
+//    Two rasterisers (tiny-skia, Chromium's Skia) anti-alias edges
+//    differently and keyframes may be interpolated (within 1 px), so this
+//    comparison counts pixels that differ by more than 32 in a channel:
+//    they must be edge pixels, at most 2% of the image, with a small mean.
+// Also: no console errors on either page, the page's downloads equal the
+// CLI's files byte for byte, and a screenshot goes to docs/img/playground.png.
+
+import { test, before, after } from "node:test";
+import assert from "node:assert/strict";
+import { spawn, execFileSync } from "node:child_process";
+import { mkdtempSync, readFileSync, writeFileSync, rmSync, mkdirSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { join, dirname, resolve } from "node:path";
+import { fileURLToPath } from "node:url";
+import { createRequire } from "node:module";
+import { chromium } from "playwright-core";
+
+const here = dirname(fileURLToPath(import.meta.url));
+const root = resolve(here, "../..");
+const require = createRequire(import.meta.url);
+const BIN = resolve(root, process.env.IMMERSE_BIN || "target/release/immerse");
+const CHROMIUM = process.env.CHROMIUM || "/usr/bin/chromium";
+const SCREENSHOT = resolve(root, process.env.SCREENSHOT || "docs/img/playground.png");
+const FRAMES = 24;
+const SCRUB_TO = 20; // a frame where the strip overlaps itself
+const SIZE = 600;
+const started = Date.now();
+const measured = {};
+
+let server;
+let url;
+let context;
+let work;
+
+function startServer() {
+  return new Promise((resolvePromise, reject) => {
+    const child = spawn(BIN, ["serve", "--port", "0"], { stdio: ["ignore", "pipe", "pipe"] });
+    let out = "";
+    let err = "";
+    const timer = setTimeout(() => reject(new Error(`immerse serve printed no URL in 20 s: ${err}`)), 20000);
+    child.stdout.on("data", (d) => {
+      out += d;
+      const m = out.match(/^(http:\/\/127\.0\.0\.1:\d+\/)\s*$/m);
+      if (m) {
+        clearTimeout(timer);
+        resolvePromise({ child, url: m[1] });
+      }
+    });
+    child.stderr.on("data", (d) => { err += d; });
+    child.on("exit", (code) => {
+      clearTimeout(timer);
+      reject(new Error(`immerse serve exited (${code}): ${err}`));
+    });
+  });
+}
+
+before(async () => {
+  work = mkdtempSync(join(tmpdir(), "immerse-browser-"));
+  ({ child: server, url } = await startServer());
+  context = await chromium.launchPersistentContext(join(work, "profile"), {
+    executablePath: CHROMIUM,
+    headless: true,
+    args: [
+      "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+      "--disable-background-networking", "--disable-component-update", "--disable-sync",
+      "--force-color-profile=srgb",
+    ],
+    viewport: { width: 1180, height: 900 },
+    deviceScaleFactor: 1,
+    timeout: 60000,
+  });
+});
+
+after(async () => {
+  if (context) await context.close().catch(() => {});
+  if (server && server.exitCode === null) {
+    // Ctrl-C: the server must stop cleanly and promptly.
+    const exited = new Promise((r) => server.once("exit", (code, signal) => r({ code, signal })));
+    server.kill("SIGINT");
+    const res = await Promise.race([exited, new Promise((r) => setTimeout(() => r(null), 10000))]);
+    if (!res) server.kill("SIGKILL");
+    measured.server_exit = res ? (res.code ?? res.signal) : "killed after 10 s";
+  }
+  if (work) rmSync(work, { recursive: true, force: true });
+  measured.run_seconds = Math.round((Date.now() - started) / 100) / 10;
+  console.log("browser test measurements: " + JSON.stringify(measured));
+});
+
+/** Console errors and uncaught exceptions of a page. */
+function watchConsole(page) {
+  const errors = [];
+  page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
+  page.on("pageerror", (e) => errors.push(String(e)));
+  return errors;
+}
+
+/** Mouse path of a closed curve in canvas pixels (y down). */
+function ellipse(cx, cy, rx, ry, n) {
+  return Array.from({ length: n }, (_, i) => {
+    const a = (2 * Math.PI * i) / n;
+    return [cx + rx * Math.cos(a), cy + ry * Math.sin(a)];
+  });
+}
+
+/** A strip winding 470° around a centre, overlapping itself where its
+ * ends meet: self-overlapping but not simple. */
+function curlStrip(cx, cy) {
+  const out = [];
+  const total = (470 * Math.PI) / 180;
+  const steps = 70;
+  const outer = (t) => 150 + 40 * (t / total);
+  for (let i = 0; i <= steps; i++) {
+    const t = (total * i) / steps;
+    out.push([cx + outer(t) * Math.cos(t), cy + outer(t) * Math.sin(t)]);
+  }
+  for (let i = steps; i >= 0; i--) {
+    const t = (total * i) / steps;
+    const r = outer(t) - 60;
+    out.push([cx + r * Math.cos(t), cy + r * Math.sin(t)]);
+  }
+  return out;
+}
+
+/** Presses, drags along `path` (canvas pixels) and releases. */
+async function drawFreehand(page, path) {
+  const box = await page.locator("#stage").boundingBox();
+  const at = ([x, y]) => [box.x + x, box.y + y];
+  await page.mouse.move(...at(path[0]));
+  await page.mouse.down();
+  for (const p of path.slice(1)) await page.mouse.move(...at(p), { steps: 2 });
+  await page.mouse.up();
+}
+
+/** Compares a canvas (by selector, or an in-page canvas returned by
+ * `canvasExpr`) with a PNG given as base64; per-pixel largest channel
+ * difference. */
+async function compareWithPng(page, canvasExpr, pngBase64, threshold) {
+  return page.evaluate(async ({ canvasExpr, pngBase64, threshold }) => {
+    const canvas = eval(canvasExpr); // eslint-disable-line no-eval
+    const img = new Image();
+    img.src = "data:image/png;base64," + pngBase64;
+    await img.decode();
+    const ref = document.createElement("canvas");
+    ref.width = img.width; ref.height = img.height;
+    const rctx = ref.getContext("2d");
+    rctx.drawImage(img, 0, 0);
+    const a = canvas.getContext("2d").getImageData(0, 0, canvas.width, canvas.height).data;
+    const b = rctx.getImageData(0, 0, ref.width, ref.height).data;
+    if (canvas.width !== ref.width || canvas.height !== ref.height) {
+      return { error: `sizes differ: ${canvas.width}x${canvas.height} vs ${ref.width}x${ref.height}` };
+    }
+    // The shades of depth 1 and 2 (render/src/style.rs: fill #3d7cc9 at
+    // 1-(1-0.45)^k over #fbfaf7).
+    const shade = (k) => {
+      const o = 1 - Math.pow(0.55, k);
+      return [[0xfb, 0x3d], [0xfa, 0x7c], [0xf7, 0xc9]].map(([bg, f]) => Math.round(bg * (1 - o) + f * o));
+    };
+    const near = (d, i, c) => Math.abs(d[i] - c[0]) <= 3 && Math.abs(d[i + 1] - c[1]) <= 3 && Math.abs(d[i + 2] - c[2]) <= 3;
+    const [one, two] = [shade(1), shade(2)];
+    let max = 0, sum = 0, over = 0, depth1 = [0, 0], depth2 = [0, 0];
+    for (let i = 0; i < a.length; i += 4) {
+      const d = Math.max(Math.abs(a[i] - b[i]), Math.abs(a[i + 1] - b[i + 1]), Math.abs(a[i + 2] - b[i + 2]));
+      max = Math.max(max, d);
+      sum += d;
+      if (d > threshold) over++;
+      if (near(b, i, one)) { depth1[0]++; if (near(a, i, one)) depth1[1]++; }
+      if (near(b, i, two)) { depth2[0]++; if (near(a, i, two)) depth2[1]++; }
+    }
+    const pixels = a.length / 4;
+    return {
+      pixels, max, mean: sum / pixels, over, overFraction: over / pixels,
+      // [pixels of that shade in the PNG, of those, pixels of that shade on the canvas]
+      depth1, depth2,
+    };
+  }, { canvasExpr, pngBase64, threshold });
+}
+
+test("playground: draw two curves, morph, scrub; the canvas is immerse morph's PNG", { timeout: 180000 }, async () => {
+  const page = await context.newPage();
+  const errors = watchConsole(page);
+  await page.goto(url);
+  await page.waitForFunction(() => window.immerse && window.immerse.ready === true);
+
+  const c = SIZE / 2;
+  await drawFreehand(page, ellipse(c, c, 170, 120, 48));
+  await page.waitForSelector("#curves li:nth-child(1)[data-status=ok]", { timeout: 20000 });
+  await drawFreehand(page, curlStrip(c, c));
+  await page.waitForSelector("#curves li:nth-child(2)[data-status=ok]", { timeout: 20000 });
+  const verdicts = await page.locator("#curves .verdict").allTextContents();
+  assert.deepEqual(verdicts, ["✓ self-overlapping", "✓ self-overlapping"]);
+  const facts = await page.locator("#curves .facts").allTextContents();
+  assert.match(facts[1], /turning number -?1 · crosses itself/);
+
+  // A reference curve that is not self-overlapping says why.
+  const eight = await page.locator("#reference option", { hasText: "figure-eight" }).getAttribute("value");
+  await page.selectOption("#reference", eight);
+  await page.click("#add-reference");
+  await page.waitForSelector("#curves li:nth-child(3)[data-status=bad]", { timeout: 20000 });
+  const why = await page.locator("#curves li:nth-child(3) .verdict").textContent();
+  assert.match(why, /^✗ not self-overlapping: turning number is 0, not 1$/);
+  assert.equal(await page.isDisabled("#run"), true, "Morph is disabled while a curve cannot be morphed");
+  await page.locator("#curves li:nth-child(3) button[title=remove]").click();
+
+  // Loading a curve file (SVG here) works the same way.
+  await page.setInputFiles("#file", join(root, "curves/tail-loop.svg"));
+  await page.waitForSelector("#curves li:nth-child(3)[data-status=ok]", { timeout: 20000 });
+  assert.equal(await page.locator("#curves li:nth-child(3) .name").textContent(), "3. tail-loop");
+  await page.locator("#curves li:nth-child(3) button[title=remove]").click();
+  assert.equal(await page.locator("#curves li").count(), 2);
+
+  await page.fill("#opt-frames", String(FRAMES));
+  const t0 = Date.now();
+  await page.click("#run");
+  await page.waitForSelector("#stage[data-shown='0']", { timeout: 60000 });
+  measured.morph_and_first_frame_ms = Date.now() - t0;
+  const status = await page.locator("#status").textContent();
+  assert.match(status, new RegExp(`^${FRAMES} frames, every one an immersed disk`));
+
+  // Scrub with the slider (keyboard, as a person would), then play a bit.
+  await page.locator("#scrub").focus();
+  for (let i = 0; i < SCRUB_TO; i++) await page.keyboard.press("ArrowRight");
+  await page.waitForSelector(`#stage[data-shown='${SCRUB_TO}']`, { timeout: 20000 });
+  assert.equal(await page.locator("#frame-label").textContent(), `frame ${SCRUB_TO} / ${FRAMES - 1}`);
+
+  // The same curves through the command line.
+  const curves = await page.evaluate(() => window.immerse.state.curves.map((c) => c.points));
+  const a = join(work, "a.json");
+  const b = join(work, "b.json");
+  writeFileSync(a, JSON.stringify({ name: "drawn-a", points: curves[0] }));
+  writeFileSync(b, JSON.stringify({ name: "drawn-b", points: curves[1] }));
+  const framesDir = join(work, "frames");
+  const cliJson = join(work, "morph.json");
+  const cliLottie = join(work, "morph.lottie.json");
+  execFileSync(BIN, ["morph", a, b, "--frames", String(FRAMES), "--size", `${SIZE}x${SIZE}`, "-o", framesDir, "--format", "png", "--json", cliJson, "--quiet"]);
+  execFileSync(BIN, ["morph", a, b, "--frames", String(FRAMES), "--size", `${SIZE}x${SIZE}`, "--format", "lottie", "-o", cliLottie, "--quiet"]);
+  const png = readFileSync(join(framesDir, `frame_${String(SCRUB_TO).padStart(4, "0")}.png`)).toString("base64");
+
+  const diff = await compareWithPng(page, "document.getElementById('stage')", png, 2);
+  assert.equal(diff.error, undefined, diff.error);
+  measured.canvas_vs_png = diff;
+  assert.ok(diff.max <= 2, `canvas differs from immerse morph's PNG by up to ${diff.max} in a channel`);
+
+  // Downloads are the CLI's outputs, byte for byte (same options).
+  const job = await page.evaluate(() => window.immerse.lastMorph.urls);
+  const get = async (u) => Buffer.from(await (await page.request.get(new URL(u, url).href)).body());
+  assert.deepEqual(JSON.parse(await get(job.json)), JSON.parse(readFileSync(cliJson)));
+  assert.equal((await get(job.lottie)).toString(), readFileSync(cliLottie).toString());
+  const gif = await get(job.gif);
+  assert.equal(gif.subarray(0, 6).toString(), "GIF89a");
+  const svg = (await get(job.svg)).toString();
+  assert.match(svg, /<animate attributeName="d"/);
+  const pngDownload = await get(job.frame.replace("{k}", String(SCRUB_TO)));
+  assert.equal(pngDownload.toString("base64"), png);
+
+  // Play for a moment, stop at the scrubbed frame for the screenshot.
+  await page.click("#play");
+  await page.waitForTimeout(400);
+  await page.click("#play");
+  await page.locator("#scrub").fill(String(SCRUB_TO));
+  await page.waitForSelector(`#stage[data-shown='${SCRUB_TO}']`);
+  mkdirSync(dirname(SCREENSHOT), { recursive: true });
+  await page.screenshot({ path: SCREENSHOT });
+
+  assert.deepEqual(errors, [], "console errors on the playground");
+  await page.close();
+});
+
+test("lottie: lottie-web renders immerse's Lottie like immerse's PNG", { timeout: 120000 }, async () => {
+  const lottieFile = join(work, "morph.lottie.json");
+  const framesDir = join(work, "frames");
+  const animation = JSON.parse(readFileSync(lottieFile, "utf8"));
+  assert.equal(animation.layers.length, 1);
+  assert.equal(animation.layers[0].ty, 4);
+  const keys = animation.layers[0].shapes[0].it[0].ks.k;
+  measured.lottie_keyframes = `${keys.length} of ${FRAMES} frames`;
+  const page = await context.newPage();
+  const errors = watchConsole(page);
+  await page.setContent(`<!doctype html><html><body style="margin:0;background:#fff">
+    <canvas id="lottie" width="${SIZE}" height="${SIZE}"></canvas></body></html>`);
+  await page.addScriptTag({ path: require.resolve("lottie-web/build/player/lottie.min.js") });
+  await page.evaluate((data) => {
+    const canvas = document.getElementById("lottie");
+    window.anim = window.lottie.loadAnimation({
+      renderer: "canvas",
+      loop: false,
+      autoplay: false,
+      animationData: data,
+      rendererSettings: { context: canvas.getContext("2d"), clearCanvas: true, dpr: 1 },
+    });
+    return new Promise((done) => {
+      if (window.anim.isLoaded) done(); else window.anim.addEventListener("DOMLoaded", done);
+    });
+  }, animation);
+
+  // The scrubbed frame, and the last frame (the strip, overlapping itself).
+  for (const frame of [SCRUB_TO, FRAMES - 1]) {
+    await page.evaluate((k) => window.anim.goToAndStop(k, true), frame);
+    const png = readFileSync(join(framesDir, `frame_${String(frame).padStart(4, "0")}.png`)).toString("base64");
+    const diff = await compareWithPng(page, "document.getElementById('lottie')", png, 32);
+    assert.equal(diff.error, undefined, diff.error);
+    measured[`lottie_vs_png_frame_${frame}`] = diff;
+    assert.ok(diff.overFraction <= 0.02, `frame ${frame}: ${(diff.overFraction * 100).toFixed(2)}% of the pixels differ by more than 32`);
+    assert.ok(diff.mean <= 2, `frame ${frame}: mean difference ${diff.mean}`);
+    // Overlap depth is shaded as in the PNG: nearly every pixel of the
+    // PNG's depth-1 and depth-2 shades has that shade in lottie-web too.
+    assert.ok(diff.depth1[1] >= 0.95 * diff.depth1[0], `frame ${frame}, depth 1 shading: ${diff.depth1}`);
+    assert.ok(diff.depth2[1] >= 0.95 * diff.depth2[0], `frame ${frame}, depth 2 shading: ${diff.depth2}`);
+    if (frame === FRAMES - 1) {
+      assert.ok(diff.depth2[0] > 500, `the last frame overlaps itself: ${diff.depth2}`);
+    }
+  }
+  assert.deepEqual(errors, [], "console errors on the Lottie page");
+  await page.close();
+});

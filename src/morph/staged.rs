@@ -60,6 +60,10 @@ pub(crate) struct Leg {
     /// The mean over vertices of the distance each travels over the
     /// samples (the numerator of the detour).
     pub(crate) mean_travel: f64,
+    /// The least total absolute turning over the samples and the smaller
+    /// of the leg's ends' (the unwind of §7b), where measured (last legs).
+    pub(crate) least_turning: f64,
+    pub(crate) end_turning: f64,
 }
 
 impl Leg {
@@ -473,6 +477,8 @@ fn walk(
             samples: vec![0.0],
             travel: vec![0.0],
             mean_travel: 0.0,
+            least_turning: 0.0,
+            end_turning: 0.0,
         };
         let mut prev = x.to_vec();
         let mut repairs = 0;
@@ -548,9 +554,14 @@ fn last_leg(
                         &why,
                     ));
                 }
-                let better = best
-                    .as_ref()
-                    .is_none_or(|(b, _)| leg.mean_travel < b.mean_travel);
+                // Less travel wins, unless it unwinds overlaps the other
+                // keeps (§7b's unwind below 0.9 against at least 0.9).
+                let kept = |l: &Leg| l.least_turning >= 0.9 * l.end_turning;
+                let better = best.as_ref().is_none_or(|(b, _)| match (kept(&leg), kept(b)) {
+                    (true, false) => true,
+                    (false, true) => false,
+                    _ => leg.mean_travel < b.mean_travel,
+                });
                 if better {
                     best = Some((leg, repairs));
                 }
@@ -590,14 +601,20 @@ fn sample_leg(
         samples: vec![0.0],
         travel: vec![0.0],
         mean_travel: 0.0,
+        least_turning: 0.0,
+        end_turning: 0.0,
     };
     let mut prev = x.to_vec();
     let mut repairs = 0;
+    let turning = crate::frames::total_absolute_turning;
+    leg.end_turning = turning(x).min(turning(leg.plan.target()));
+    leg.least_turning = turning(x);
     for k in 1..=steps {
         let s = k as f64 / steps as f64;
         let (p, r) = leg.plan.positions_counted(s, path);
         repairs += r;
         prev = record(&mut leg, tris, max_step, &prev, s, p, &mut repairs)?;
+        leg.least_turning = leg.least_turning.min(turning(&prev));
     }
     Ok((leg, repairs))
 }

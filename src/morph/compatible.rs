@@ -18,7 +18,6 @@ use super::paths::{
     RotateSlide, ThirdVertexPath, base_frame_angles, from_base_frame, to_base_frame,
 };
 use crate::geom::Point;
-use crate::geom::polygon::triangle_angles;
 use crate::tree::{DualTree, RootChoice, Rooted, root_triangle};
 use std::f64::consts::TAU;
 
@@ -358,8 +357,22 @@ impl Compatible {
             }
             ThirdVertexPath::Straight => {
                 let guide = self.guide(t);
-                let ang = self.straight_angles(t, &guide);
-                layout::lay_out_fitted(&self.rooted, &layout::factors(&ang), |unit| {
+                let (ang, kept) = self.straight_angles(t, &guide);
+                // A triangle that keeps the guide's shape takes its factor
+                // from the guide's points (no trigonometry; the layout then
+                // reproduces the guide there up to rounding).
+                let factors: Vec<Point> = (0..ang.len())
+                    .map(|i| {
+                        if kept[i] {
+                            let [x, y, w] = self.corners[i];
+                            let (e, f) = (guide[y] - guide[x], guide[w] - guide[x]);
+                            Point::new(e.dot(f), e.perp_dot(f)) / e.length_squared()
+                        } else {
+                            layout::factor(ang[i])
+                        }
+                    })
+                    .collect();
+                layout::lay_out_fitted(&self.rooted, &factors, |unit| {
                     self.keep_area(layout::fit_similarity(unit, &guide), unit, &guide)
                 })
             }
@@ -394,31 +407,38 @@ impl Compatible {
     /// angles positive with triangle sums π, so the result is valid; it is
     /// continuous in t, and where the guide is valid with margins it is the
     /// guide's own angle vector.
-    fn straight_angles(&self, t: f64, guide: &[Point]) -> Vec<[f64; 3]> {
+    fn straight_angles(&self, t: f64, guide: &[Point]) -> (Vec<[f64; 3]>, Vec<bool>) {
         let m = self.triangles.len();
         let rule: Vec<[f64; 3]> = (0..m)
             .map(|i| lerp3(self.ang_src[i], self.ang_dst[i], t))
             .collect();
+        // Per triangle: the angles, and whether they are the guide's own.
+        let mut kept = vec![false; m];
         let mut ang: Vec<[f64; 3]> = (0..m)
             .map(|i| {
                 let [x, y, w] = self.corners[i];
                 let c = rule[i];
                 let floor = STRAIGHT_MIN_ANGLE.min(0.5 * c[0].min(c[1]).min(c[2]));
-                let measured = triangle_angles(guide[x], guide[y], guide[w]);
-                let sum = measured[0] + measured[1] + measured[2];
-                let mu = if sum.is_nan() || sum <= 3.0 || floor <= 0.0 {
-                    1.0
-                } else {
-                    let sign =
-                        f64::from(crate::geom::orient(guide[x], guide[y], guide[w]).signum());
-                    let sigma = sign * measured[0].min(measured[1]).min(measured[2]);
-                    ((floor - sigma) / (2.0 * floor)).clamp(0.0, 1.0)
-                };
-                if mu >= 1.0 {
+                let (px, py, pw) = (guide[x], guide[y], guide[w]);
+                if px == py || px == pw || py == pw || floor <= 0.0 {
+                    return c;
+                }
+                // Two angles by atan2, the third as the rest of π.
+                let (e, f) = (py - px, pw - px);
+                let cross = e.perp_dot(f).abs();
+                let ax = cross.atan2(e.dot(f));
+                let ay = cross.atan2((px - py).dot(pw - py));
+                let measured = [ax, ay, (std::f64::consts::PI - ax - ay).max(0.0)];
+                let sign = f64::from(crate::geom::orient(px, py, pw).signum());
+                let sigma = sign * measured[0].min(measured[1]).min(measured[2]);
+                let mu = ((floor - sigma) / (2.0 * floor)).clamp(0.0, 1.0);
+                if mu <= 0.0 {
+                    kept[i] = true;
+                    measured
+                } else if mu >= 1.0 {
                     c
                 } else {
-                    let a = measured.map(|v| v * std::f64::consts::PI / sum);
-                    lerp3(a, c, mu)
+                    lerp3(measured, c, mu)
                 }
             })
             .collect();
@@ -444,6 +464,7 @@ impl Compatible {
                 .fold(0.0, f64::max);
             if l > 0.0 {
                 *a = lerp3(*a, rule[i], l);
+                kept[i] = false;
             }
         }
         // Global: whatever the local step could not settle.
@@ -453,8 +474,9 @@ impl Compatible {
             for (a, c) in ang.iter_mut().zip(&rule) {
                 *a = lerp3(*a, *c, lambda);
             }
+            kept.iter_mut().for_each(|k| *k = false);
         }
-        ang
+        (ang, kept)
     }
 
     /// The straight path never collapses or balloons the shape: where the
@@ -751,12 +773,24 @@ pub(crate) mod tests {
             if !crate::geom::polygon::is_simple(&a) || !crate::geom::polygon::is_simple(&b) {
                 self_intersecting += 1;
             }
-            for path in [ThirdVertexPath::Angle, ThirdVertexPath::Hybrid] {
+            for path in [
+                ThirdVertexPath::Angle,
+                ThirdVertexPath::Hybrid,
+                ThirdVertexPath::Straight,
+            ] {
                 let plan =
                     Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
                 let (a0, _) = area_and_centroid(&a, &tris);
                 let (a1, _) = area_and_centroid(&b, &tris);
-                let (lo, hi) = (a0.min(a1), a0.max(a1));
+                // The straight path keeps a wider range (STRAIGHT_AREA_RANGE).
+                let (lo, hi) = if path == ThirdVertexPath::Straight {
+                    (
+                        a0.min(a1) * STRAIGHT_AREA_RANGE.0,
+                        a0.max(a1) * STRAIGHT_AREA_RANGE.1,
+                    )
+                } else {
+                    (a0.min(a1), a0.max(a1))
+                };
                 let mut prev: Option<Vec<Point>> = None;
                 for i in 0..=200 {
                     let t = i as f64 / 200.0;
@@ -922,9 +956,9 @@ pub(crate) mod tests {
                 Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
             let diag = bbox_diag(&a).max(bbox_diag(&b));
             // Halving the step roughly halves the largest move: no jumps.
-            let max_step = |steps: usize| {
+            let max_step = |steps: usize, path: ThirdVertexPath| {
                 let frames: Vec<Vec<Point>> = (0..=steps)
-                    .map(|i| plan.positions(i as f64 / steps as f64, ThirdVertexPath::Hybrid))
+                    .map(|i| plan.positions(i as f64 / steps as f64, path))
                     .collect();
                 frames
                     .windows(2)
@@ -936,10 +970,76 @@ pub(crate) mod tests {
                     })
                     .fold(0.0, f64::max)
             };
-            let (coarse, fine) = (max_step(200), max_step(400));
+            let path = ThirdVertexPath::Hybrid;
+            let (coarse, fine) = (max_step(200, path), max_step(400, path));
             assert!(fine < 0.75 * coarse + 1e-9 * diag, "{coarse} -> {fine}");
             assert!(coarse < 0.25 * diag);
+            // The straight path can be steep where a triangle of the guide
+            // passes through degeneracy (the frame timing spends frames
+            // there), but it never jumps: a step of 1e-7 moves nothing far.
+            for i in 0..400 {
+                let t = i as f64 / 400.0;
+                let p = plan.positions(t, ThirdVertexPath::Straight);
+                let q = plan.positions(t + 1e-7, ThirdVertexPath::Straight);
+                let m = p
+                    .iter()
+                    .zip(&q)
+                    .map(|(x, y)| (*x - *y).length())
+                    .fold(0.0, f64::max);
+                assert!(m < 1e-3 * diag, "straight jumps {m} at t = {t}");
+            }
         }
+    }
+
+    /// Where the linear morph is valid with margins, the straight path is
+    /// the linear morph: a mild deformation of a random immersed disk
+    /// (small enough that no triangle thins below the floor and no fan
+    /// nears 2π) is interpolated linearly, vertex by vertex.
+    #[test]
+    fn the_straight_path_is_the_linear_morph_where_that_is_valid() {
+        let mut rng = Rng(0x5742a16);
+        let mut checked = 0;
+        for _ in 0..40 {
+            let n = 6 + (rng.next() * 30.0) as usize;
+            let tris = random_triangulation(n as u32, &mut rng);
+            let a = random_immersed_disk(n, &tris, 1.0, &mut rng);
+            let diag = bbox_diag(&a);
+            let b: Vec<Point> = a
+                .iter()
+                .map(|p| *p + Point::new(rng.next() - 0.5, rng.next() - 0.5) * (0.002 * diag))
+                .collect();
+            // Only pairs whose linear morph keeps margins everywhere.
+            let linear =
+                |t: f64| -> Vec<Point> { a.iter().zip(&b).map(|(p, q)| p.lerp(*q, t)).collect() };
+            let margins = (0..=20).all(|i| {
+                let p = linear(i as f64 / 20.0);
+                crate::immersion::check(&p, &tris).is_ok()
+                    && crate::geom::polygon::min_triangle_angle(&p, &tris) > STRAIGHT_MIN_ANGLE
+            });
+            if !margins {
+                continue;
+            }
+            let plan =
+                Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
+            // With the guide's rotation taken out (it is tiny here), the
+            // straight frames are the linear ones.
+            for i in 1..20 {
+                let t = i as f64 / 20.0;
+                let got = plan.positions(t, ThirdVertexPath::Straight);
+                let guide = plan.guide(t);
+                for (g, q) in got.iter().zip(&guide) {
+                    assert!((*g - *q).length() < 1e-9 * diag, "t={t}: {g} vs {q}");
+                }
+                for (g, q) in guide.iter().zip(&linear(t)) {
+                    assert!((*g - *q).length() < 1e-2 * diag);
+                }
+            }
+            checked += 1;
+        }
+        assert!(
+            checked >= 10,
+            "only {checked} pairs had a valid linear morph"
+        );
     }
 
     #[test]

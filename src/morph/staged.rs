@@ -557,11 +557,13 @@ fn last_leg(
                 // Less travel wins, unless it unwinds overlaps the other
                 // keeps (§7b's unwind below 0.9 against at least 0.9).
                 let kept = |l: &Leg| l.least_turning >= 0.9 * l.end_turning;
-                let better = best.as_ref().is_none_or(|(b, _)| match (kept(&leg), kept(b)) {
-                    (true, false) => true,
-                    (false, true) => false,
-                    _ => leg.mean_travel < b.mean_travel,
-                });
+                let better = best
+                    .as_ref()
+                    .is_none_or(|(b, _)| match (kept(&leg), kept(b)) {
+                        (true, false) => true,
+                        (false, true) => false,
+                        _ => leg.mean_travel < b.mean_travel,
+                    });
                 if better {
                     best = Some((leg, repairs));
                 }

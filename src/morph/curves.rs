@@ -410,28 +410,66 @@ pub(crate) struct Prepared {
     pub(crate) fallbacks: Vec<Fallback>,
 }
 
+/// The triangulations of the two input curves, computed once and shared by
+/// every plan that uses a curve unchanged (the trials of
+/// [`Correspondence::Best`] run side by side).
+pub(crate) struct Triangulations<'a> {
+    a: &'a [Point],
+    b: &'a [Point],
+    quality: Quality,
+    ta: std::sync::OnceLock<Result<Vec<[u32; 3]>, NotSelfOverlapping>>,
+    tb: std::sync::OnceLock<Result<Vec<[u32; 3]>, NotSelfOverlapping>>,
+}
+
+impl<'a> Triangulations<'a> {
+    pub(crate) fn new(a: &'a [Point], b: &'a [Point], quality: Quality) -> Self {
+        Triangulations {
+            a,
+            b,
+            quality,
+            ta: std::sync::OnceLock::new(),
+            tb: std::sync::OnceLock::new(),
+        }
+    }
+
+    /// The triangulation of `p` (one of the inputs: from the cache).
+    fn of(&self, p: &[Point]) -> Result<Vec<[u32; 3]>, NotSelfOverlapping> {
+        let compute = |q: &[Point]| triangulate_with(q, self.quality).map(|i| i.triangles);
+        if p == self.a {
+            self.ta.get_or_init(|| compute(self.a)).clone()
+        } else if p == self.b {
+            self.tb.get_or_init(|| compute(self.b)).clone()
+        } else {
+            compute(p)
+        }
+    }
+
+    /// The input `side` triangulated, naming it in the error.
+    fn side(&self, side: Side) -> Result<Vec<[u32; 3]>, CurveMorphError> {
+        let p = if side == Side::Source { self.a } else { self.b };
+        self.of(p)
+            .map_err(|reason| CurveMorphError::NotSelfOverlapping { side, reason })
+    }
+}
+
 /// Equalises counts (falling back from resampling to insertion when
 /// resampling would make a curve not self-overlapping) and triangulates.
 pub(crate) fn prepare(
-    a: &[Point],
-    b: &[Point],
+    tri: &Triangulations<'_>,
     counts: Counts,
-    quality: Quality,
     correspondence: Correspondence,
 ) -> Result<Prepared, CurveMorphError> {
+    let (a, b) = (tri.a, tri.b);
     let mut fallbacks = Vec::new();
     if counts == Counts::Insert && correspondence == Correspondence::Outline {
         let (pa, pb, k) = crate::correspond::align(a, b);
-        match (
-            triangulate_with(&pa, quality),
-            triangulate_with(&pb, quality),
-        ) {
+        match (tri.of(&pa), tri.of(&pb)) {
             (Ok(ta), Ok(tb)) => {
                 return Ok(Prepared {
                     a: pa,
                     b: pb,
-                    ta: ta.triangles,
-                    tb: tb.triangles,
+                    ta,
+                    tb,
                     shift: Some(k),
                     fallbacks,
                 });
@@ -441,8 +479,8 @@ pub(crate) fn prepare(
                 // thin part: split the longest edges instead (below), and
                 // say so; the user's curves are only blamed if they are
                 // not self-overlapping themselves.
-                triangulate_side(a, quality, Side::Source)?;
-                triangulate_side(b, quality, Side::Target)?;
+                tri.side(Side::Source)?;
+                tri.side(Side::Target)?;
                 fallbacks.push(Fallback::new(
                     "split the longest edges instead of inserting vertices where the other curve's are",
                     &format!("the aligned insertion made a curve not self-overlapping ({reason})"),
@@ -453,14 +491,14 @@ pub(crate) fn prepare(
     if counts == Counts::Resample {
         let (ra, rb) = equal_counts(a, b, Counts::Resample);
         let tried = [(&ra, Side::Source), (&rb, Side::Target)]
-            .map(|(p, side)| triangulate_with(p, quality).map_err(|reason| (side, reason)));
+            .map(|(p, side)| tri.of(p).map_err(|reason| (side, reason)));
         match tried {
             [Ok(ta), Ok(tb)] => {
                 return Ok(Prepared {
                     a: ra,
                     b: rb,
-                    ta: ta.triangles,
-                    tb: tb.triangles,
+                    ta,
+                    tb,
                     shift: None,
                     fallbacks,
                 });
@@ -468,8 +506,7 @@ pub(crate) fn prepare(
             [Err((side, reason)), _] | [_, Err((side, reason))] => {
                 // Is the user's curve itself self-overlapping? Then the
                 // resampling did it: insert vertices instead, and say so.
-                let original = if side == Side::Source { a } else { b };
-                triangulate_side(original, quality, side)?;
+                tri.side(side)?;
                 fallbacks.push(Fallback::new(
                     "inserted vertices instead of resampling",
                     &format!(
@@ -480,15 +517,12 @@ pub(crate) fn prepare(
         }
     }
     let (ia, ib) = equal_counts(a, b, Counts::Insert);
-    let (ta, tb) = match (
-        triangulate_with(&ia, quality),
-        triangulate_with(&ib, quality),
-    ) {
-        (Ok(ta), Ok(tb)) => (ta.triangles, tb.triangles),
+    let (ta, tb) = match (tri.of(&ia), tri.of(&ib)) {
+        (Ok(ta), Ok(tb)) => (ta, tb),
         (Err(reason), _) | (_, Err(reason)) => {
             // Is it the user's curve, or the insertion?
-            triangulate_side(a, quality, Side::Source)?;
-            triangulate_side(b, quality, Side::Target)?;
+            tri.side(Side::Source)?;
+            tri.side(Side::Target)?;
             return Err(CurveMorphError::Insertion { reason });
         }
     };
@@ -592,8 +626,9 @@ pub(crate) fn plan(
     b: &[Point],
     options: &CurveMorphOptions,
 ) -> Result<(Prepared, Sides), CurveMorphError> {
+    let tri = Triangulations::new(a, b, options.quality);
     let one = |rule: Correspondence| -> Result<(Prepared, Sides), CurveMorphError> {
-        let p = prepare(a, b, options.counts, options.quality, rule)?;
+        let p = prepare(&tri, options.counts, rule)?;
         let k = match p.shift {
             Some(k) => k,
             None => choose_shift(&p.a, &p.b, &p.ta, &p.tb, rule),

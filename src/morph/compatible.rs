@@ -730,23 +730,12 @@ pub(crate) mod tests {
                 f.map(|x| x * PI / s)
             })
             .collect();
-        let fan = |ang: &[[f64; 3]]| {
-            let mut s = vec![0.0; n];
-            for (t, a) in triangles.iter().zip(ang) {
-                for k in 0..3 {
-                    s[t[k] as usize] += a[k];
-                }
-            }
-            s
-        };
-        let (sr, sd) = (fan(&rnd), fan(&disk));
-        let cap = TAU - 0.1;
-        let mut lambda: f64 = 0.0;
-        for v in 0..n {
-            if sr[v] > cap {
-                lambda = lambda.max((sr[v] - cap) / (sr[v] - sd[v]));
-            }
-        }
+        let corners: Vec<[usize; 3]> = triangles.iter().map(|t| t.map(|v| v as usize)).collect();
+        let (sr, sd) = (
+            layout::fan_sums(n, &corners, &rnd),
+            layout::fan_sums(n, &corners, &disk),
+        );
+        let lambda = layout::fan_blend(&sr, &sd, |_| TAU - 0.1);
         let ang: Vec<[f64; 3]> = rnd
             .iter()
             .zip(&disk)

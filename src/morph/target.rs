@@ -28,7 +28,7 @@
 
 use super::flips::FlipTriangulation;
 use super::lay_out_rooted;
-use super::layout::fit_similarity;
+use super::layout::{self, fit_similarity, lerp3};
 use super::staged::gate;
 use crate::geom::Point;
 use crate::geom::polygon::triangle_angles;
@@ -73,23 +73,10 @@ pub(crate) fn target_shape(
             m.map(|x| x * PI / s)
         })
         .collect();
-    let fan = |ang: &[[f64; 3]]| {
-        let mut s = vec![0.0; n];
-        for (t, a) in tris.iter().zip(ang) {
-            for k in 0..3 {
-                s[t[k] as usize] += a[k];
-            }
-        }
-        s
-    };
-    let (sm, sd) = (fan(&measured), fan(&disk_angles));
-    let cap = TAU - TARGET_FAN_MARGIN;
-    let mut lambda: f64 = 0.0;
-    for v in 0..n {
-        if sm[v] > cap && sm[v] > sd[v] {
-            lambda = lambda.max((sm[v] - cap) / (sm[v] - sd[v]));
-        }
-    }
+    let corners: Vec<[usize; 3]> = tris.iter().map(|t| t.map(|v| v as usize)).collect();
+    let sm = layout::fan_sums(n, &corners, &measured);
+    let sd = layout::fan_sums(n, &corners, &disk_angles);
+    let mut lambda = layout::fan_blend(&sm, &sd, |_| TAU - TARGET_FAN_MARGIN);
     let tree = DualTree::new(n, tris).ok()?;
     let rooted = tree.rooted(tree.centre());
     // Rounding in the layout can spoil a nearly degenerate target; blend
@@ -99,7 +86,7 @@ pub(crate) fn target_shape(
         let ang: Vec<[f64; 3]> = measured
             .iter()
             .zip(&disk_angles)
-            .map(|(m, d)| [0, 1, 2].map(|k| m[k] + (d[k] - m[k]) * l))
+            .map(|(m, d)| lerp3(*m, *d, l))
             .collect();
         let laid = lay_out_rooted(&rooted, tris, &ang);
         let fit = fit_similarity(&laid, other);

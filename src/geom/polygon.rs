@@ -202,6 +202,23 @@ pub fn min_angle_sine(a: Point, b: Point, c: Point) -> f64 {
     }
 }
 
+/// The length of the diagonal of the axis-aligned bounding box of `points`
+/// (0 for none). Measurement only.
+pub fn bbox_diagonal(points: &[Point]) -> f64 {
+    if points.is_empty() {
+        return 0.0;
+    }
+    let lo = points
+        .iter()
+        .copied()
+        .fold(Point::splat(f64::INFINITY), Point::min);
+    let hi = points
+        .iter()
+        .copied()
+        .fold(Point::splat(f64::NEG_INFINITY), Point::max);
+    (hi - lo).length()
+}
+
 /// The smallest interior angle (radians) over the triangles `tris` of
 /// `points`; +∞ when there are none. Measurement only.
 pub fn min_triangle_angle(points: &[Point], tris: &[[u32; 3]]) -> f64 {

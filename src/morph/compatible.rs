@@ -922,15 +922,7 @@ pub(crate) mod tests {
     }
 
     pub(crate) fn bbox_diag(p: &[Point]) -> f64 {
-        let lo = p
-            .iter()
-            .copied()
-            .fold(Point::splat(f64::INFINITY), Point::min);
-        let hi = p
-            .iter()
-            .copied()
-            .fold(Point::splat(f64::NEG_INFINITY), Point::max);
-        (hi - lo).length()
+        crate::geom::polygon::bbox_diagonal(p)
     }
 
     #[test]

@@ -557,17 +557,7 @@ pub(crate) fn sides(p: &Prepared, k: usize, options: &CurveMorphOptions) -> Side
     } else {
         ThirdVertexPath::Hybrid
     };
-    let diag = |p: &[Point]| {
-        let lo = p
-            .iter()
-            .copied()
-            .fold(Point::splat(f64::INFINITY), Point::min);
-        let hi = p
-            .iter()
-            .copied()
-            .fold(Point::splat(f64::NEG_INFINITY), Point::max);
-        (hi - lo).length()
-    };
+    let diag = crate::geom::polygon::bbox_diagonal;
     let max_step = diag(a).max(diag(b)) / SAMPLES_PER_DIAGONAL;
     let side = |s: &[Point], t: &[[u32; 3]], o: &[Point], to: &[[u32; 3]]| {
         Staged::build(&SideInput {

@@ -67,6 +67,19 @@ pub(crate) struct Leg {
 }
 
 impl Leg {
+    /// A leg with only its start sample.
+    fn start(plan: Compatible, path: ThirdVertexPath) -> Leg {
+        Leg {
+            plan,
+            path,
+            samples: vec![0.0],
+            travel: vec![0.0],
+            mean_travel: 0.0,
+            least_turning: 0.0,
+            end_turning: 0.0,
+        }
+    }
+
     fn plan_path(&self) -> ThirdVertexPath {
         self.path
     }
@@ -471,15 +484,7 @@ fn walk(
             }
             Err(e) => return Err(e.into()),
         };
-        let mut leg = Leg {
-            plan,
-            path,
-            samples: vec![0.0],
-            travel: vec![0.0],
-            mean_travel: 0.0,
-            least_turning: 0.0,
-            end_turning: 0.0,
-        };
+        let mut leg = Leg::start(plan, path);
         let mut prev = x.to_vec();
         let mut repairs = 0;
         let mut k = 1usize;
@@ -597,15 +602,7 @@ fn sample_leg(
     max_step: f64,
 ) -> Result<(Leg, usize), String> {
     let steps = (1.0 / LEG_STEP).round() as usize;
-    let mut leg = Leg {
-        plan,
-        path,
-        samples: vec![0.0],
-        travel: vec![0.0],
-        mean_travel: 0.0,
-        least_turning: 0.0,
-        end_turning: 0.0,
-    };
+    let mut leg = Leg::start(plan, path);
     let mut prev = x.to_vec();
     let mut repairs = 0;
     let turning = crate::frames::total_absolute_turning;

@@ -23,15 +23,7 @@ fn fractions(k: usize) -> Vec<f64> {
 }
 
 fn diag(points: &[Point]) -> f64 {
-    let lo = points
-        .iter()
-        .copied()
-        .fold(Point::splat(f64::INFINITY), Point::min);
-    let hi = points
-        .iter()
-        .copied()
-        .fold(Point::splat(f64::NEG_INFINITY), Point::max);
-    (hi - lo).length()
+    immerse::geom::polygon::bbox_diagonal(points)
 }
 
 fn area(f: &Frame) -> f64 {

@@ -84,7 +84,10 @@ pub fn improve(imm: Immersion) -> Immersion {
         }
         tri.flip(a, c);
         debug_assert!(
-            [[a, b, d], [b, c, d]].iter().all(|&[x, y, z]| {
+            [[a, b, d], [b, c, d]].iter().all(|&t| {
+                // Sorted, as the validity predicate takes its corners (d may
+                // come before a: the quad is a, b, c, d cyclically).
+                let [x, y, z] = crate::flip::canonical(t);
                 crate::immersion::is_valid_triangle(&points, x as usize, y as usize, z as usize)
             }),
             "a Delaunay flip produced an invalid triangle: a bug"

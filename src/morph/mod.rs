@@ -97,6 +97,19 @@ pub enum MorphError {
     Fraction(f64),
 }
 
+impl MorphError {
+    /// What went wrong, without the request to report a bug: for a
+    /// failure that a recovery then got around (a fallback's reason).
+    pub fn reason(&self) -> String {
+        match self {
+            MorphError::InvalidFrame { t, path, defect } => {
+                format!("frame at t = {t} of the {path} path is not an immersion ({defect})")
+            }
+            other => other.to_string(),
+        }
+    }
+}
+
 /// Morphs two curves that share the triangulation `triangles`, producing
 /// one frame per value in `times`.
 ///
@@ -176,4 +189,26 @@ pub fn morph_with(
         path,
         defect: last.1,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_recovered_failure_is_not_reported_as_a_bug() {
+        let e = MorphError::InvalidFrame {
+            t: 0.25,
+            path: ThirdVertexPath::Hybrid,
+            defect: "triangle 3 is clockwise".into(),
+        };
+        assert!(e.to_string().contains("this is a bug"));
+        let why = e.reason();
+        assert!(!why.contains("bug"), "{why}");
+        assert!(why.contains("t = 0.25") && why.contains("hybrid") && why.contains("triangle 3"));
+        assert_eq!(
+            MorphError::Fraction(2.0).reason(),
+            MorphError::Fraction(2.0).to_string()
+        );
+    }
 }

@@ -67,7 +67,7 @@ impl Tween {
         // failed, the max–min-angle triangulations are tried.
         if sides.a.is_err() && sides.b.is_err() && options.quality != crate::Quality::MaxMin {
             let why = match &sides.a {
-                Err(e) => e.to_string(),
+                Err(e) => e.reason(),
                 Ok(_) => String::new(),
             };
             let retry = options.with_quality(crate::Quality::MaxMin);
@@ -87,8 +87,8 @@ impl Tween {
         }
         if sides.a.is_err() != sides.b.is_err() {
             let (failed, err) = match (&sides.a, &sides.b) {
-                (Err(e), _) => (Side::Source, e.to_string()),
-                (_, Err(e)) => (Side::Target, e.to_string()),
+                (Err(e), _) => (Side::Source, e.reason()),
+                (_, Err(e)) => (Side::Target, e.reason()),
                 _ => unreachable!("exactly one side failed"),
             };
             fallbacks.push(Fallback::new(

@@ -64,24 +64,69 @@ impl Tween {
         let mut fallbacks = prepared.fallbacks.clone();
         let n = prepared.a.len();
         // Recovery: a side that failed gives way to the other; if both
-        // failed, the max–min-angle triangulations are tried.
-        if sides.a.is_err() && sides.b.is_err() && options.quality != crate::Quality::MaxMin {
+        // failed, the max–min-angle triangulations are tried, then the
+        // other intermediate (the target shape for the disk, the disk for
+        // the target shape), then both changes at once.
+        if sides.a.is_err() && sides.b.is_err() {
             let why = match &sides.a {
                 Err(e) => e.reason(),
                 Ok(_) => String::new(),
             };
-            let retry = options.with_quality(crate::Quality::MaxMin);
-            if let Ok((p, s)) = plan(a, b, &retry) {
+            let other = match options.intermediate {
+                super::Intermediate::Disk => super::Intermediate::Target,
+                super::Intermediate::Target => super::Intermediate::Disk,
+            };
+            let maxmin = crate::Quality::MaxMin;
+            let mut retries: Vec<(CurveMorphOptions, String)> = Vec::new();
+            if options.quality != maxmin {
+                retries.push((
+                    options.with_quality(maxmin),
+                    "used the max–min-angle triangulations".to_string(),
+                ));
+            }
+            retries.push((
+                options.with_intermediate(other),
+                format!("used the {} intermediate", other.as_str()),
+            ));
+            if options.quality != maxmin {
+                retries.push((
+                    options.with_intermediate(other).with_quality(maxmin),
+                    format!(
+                        "used the {} intermediate and the max–min-angle triangulations",
+                        other.as_str()
+                    ),
+                ));
+            }
+            let min_flips = super::Correspondence::MinFlips;
+            if options.correspondence != min_flips {
+                for intermediate in [options.intermediate, other] {
+                    retries.push((
+                        options
+                            .with_correspondence(min_flips)
+                            .with_intermediate(intermediate),
+                        format!(
+                            "matched the vertices by the min-flips rule and used the {} intermediate",
+                            intermediate.as_str()
+                        ),
+                    ));
+                }
+            }
+            for (retry, what) in retries {
+                let Ok((p, s)) = plan(a, b, &retry) else {
+                    continue;
+                };
                 if s.a.is_ok() || s.b.is_ok() {
                     fallbacks.push(Fallback::new(
-                        "used the max–min-angle triangulations",
+                        &what,
                         &format!(
-                            "both sides failed with the {} triangulations: {why}",
-                            options.quality.as_str()
+                            "both sides failed with the {} triangulations, the {} intermediate and the {} rule: {why}",
+                            options.quality.as_str(),
+                            options.intermediate.as_str(),
+                            options.correspondence.as_str()
                         ),
                     ));
                     fallbacks.extend(p.fallbacks.iter().cloned());
-                    return Tween::finish(p.a.len(), s, options, fallbacks);
+                    return Tween::finish(p.a.len(), s, &retry, fallbacks);
                 }
             }
         }

@@ -1,4 +1,4 @@
-//! The long stress run (issue #17, item 6): random pairs of self-overlapping
+//! The long stress run: random pairs of self-overlapping
 //! curves from the generators of `tests/common/stress.rs` (thin wedges and
 //! strips, collinear runs, very short edges, spirals, loops, glued disks at
 //! scales 1e-6..1e6), morphed under random options; every frame is checked

@@ -503,7 +503,7 @@ fn output_dir_rules() {
     assert_no_temp_files(dir.path());
 }
 
-/// Regression (issue #18, item 4): a shorter sequence written into a frame
+/// Regression: a shorter sequence written into a frame
 /// folder left the frames of an earlier, longer run behind.
 #[test]
 fn a_shorter_sequence_removes_stale_frames_but_nothing_else() {
@@ -546,7 +546,7 @@ fn a_failed_sequence_leaves_nothing() {
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }
 
-/// Regression (issue #18, item 1): with force, a symbolic link was replaced
+/// Regression: with force, a symbolic link was replaced
 /// by a regular file and a special file renamed over.
 #[cfg(unix)]
 #[test]

@@ -1,4 +1,4 @@
-//! Stress pairs (issue #17, item 6): seeded generators of self-overlapping
+//! Stress pairs: seeded generators of self-overlapping
 //! curves, the pair driver that morphs two of them and checks every frame
 //! exactly, the regression-file format and a small shrinker.
 //!

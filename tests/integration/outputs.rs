@@ -1,4 +1,4 @@
-//! Outputs a user can trust (issue #18): where bytes go (stdout, special
+//! Outputs a user can trust: where bytes go (stdout, special
 //! files, links), checks before any work, no partial output on an
 //! interrupt, no stale frames, one rule for `-o`, contact-sheet grids, one
 //! `--json [FILE]` convention, clear messages, and immerse's own SVG read

@@ -1,4 +1,4 @@
-//! Stress pairs (issue #17, item 6): random pairs of self-overlapping
+//! Stress pairs: random pairs of self-overlapping
 //! curves — thin wedges and strips (height down to 1e-9 of the length),
 //! collinear runs, edges down to 1e-12 of the perimeter, scales 1e-6 to
 //! 1e6 — morphed with every `--quality`, `--counts`, intermediate and
@@ -205,7 +205,7 @@ fn stress_pair_json_round_trip() {
     }
 }
 
-/// THE SHORT STRESS RUN (issue #17 item 6): random pairs from every
+/// THE SHORT STRESS RUN: random pairs from every
 /// generator under every option; every pair must morph, every frame must
 /// pass the exact check and the end frames must be the inputs. All
 /// failures are collected and printed (with the pairs as JSON, ready for

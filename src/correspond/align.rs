@@ -28,11 +28,7 @@ const SCORE_SAMPLES: usize = 512;
 pub fn align(a: &[Point], b: &[Point]) -> (Vec<Point>, Vec<Point>, usize) {
     // The curve with fewer vertices is the one that gets insertions; ties
     // go by coordinates so that both argument orders agree.
-    let lex = |p: &[Point]| -> Vec<u64> {
-        p.iter()
-            .flat_map(|q| [q.x.to_bits(), q.y.to_bits()])
-            .collect()
-    };
+    let lex = crate::geom::polygon::lex_key;
     let swap = match a.len().cmp(&b.len()) {
         std::cmp::Ordering::Less => false,
         std::cmp::Ordering::Greater => true,

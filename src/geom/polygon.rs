@@ -202,6 +202,16 @@ pub fn min_angle_sine(a: Point, b: Point, c: Point) -> f64 {
     }
 }
 
+/// A total order on point lists by their coordinates' bit patterns: the
+/// tie-break that makes pairwise choices independent of argument order
+/// (`lex_key(a) < lex_key(b)` picks the same curve either way round).
+pub fn lex_key(points: &[Point]) -> Vec<u64> {
+    points
+        .iter()
+        .flat_map(|q| [q.x.to_bits(), q.y.to_bits()])
+        .collect()
+}
+
 /// The length of the diagonal of the axis-aligned bounding box of `points`
 /// (0 for none). Measurement only.
 pub fn bbox_diagonal(points: &[Point]) -> f64 {

@@ -32,7 +32,8 @@ pub(crate) struct Table {
     pub(crate) rows: BitMatrix,
     /// `cols.get(j, i)` = Q[i][j].
     pub(crate) cols: BitMatrix,
-    pub(crate) planes: HalfPlanes,
+    /// The half-plane masks of each curve the table was filled for.
+    pub(crate) planes: Vec<HalfPlanes>,
 }
 
 /// Visit the apexes `k ∈ (i, j)` with `(i, k, j)` valid and bits set in
@@ -81,24 +82,70 @@ pub(crate) fn for_valid_words(
 
 /// Fill the decision table. `progress` receives the fraction of work done.
 pub(crate) fn decide(points: &[Point], progress: &mut dyn FnMut(f64)) -> Table {
+    decide_common(&[points], progress)
+}
+
+/// Fill the decision table for triangulations valid on every curve of
+/// `curves` at once (same length, vertex `v` of each corresponds): a
+/// triangle is allowed when it is valid on each curve, so `Q[0][n−1]` says
+/// whether the curves have a common (compatible) immersion
+/// triangulation. With one curve this is the decision DP above; with more,
+/// the apex set of each chord is narrowed curve by curve.
+pub(crate) fn decide_common(curves: &[&[Point]], progress: &mut dyn FnMut(f64)) -> Table {
+    let points = curves[0];
     let n = points.len();
-    let planes = HalfPlanes::new(points);
+    debug_assert!(curves.iter().all(|c| c.len() == n));
+    let planes: Vec<HalfPlanes> = curves.iter().map(|c| HalfPlanes::new(c)).collect();
     let mut rows = BitMatrix::new(n);
     let mut cols = BitMatrix::new(n);
-    let mut ccw = CcwRows::new(n);
-    debug_assert_eq!(
-        rows.bytes() + cols.bytes() + planes.bytes() + ccw.bytes(),
-        super::dp_memory_bytes(n)
+    let mut ccw: Vec<CcwRows> = curves.iter().map(|_| CcwRows::new(n)).collect();
+    debug_assert!(
+        curves.len() > 1
+            || rows.bytes() + cols.bytes() + planes[0].bytes() + ccw[0].bytes()
+                == super::dp_memory_bytes(n)
     );
+    // The apexes that passed the curves so far (only with several curves).
+    let mut narrowed = vec![0u64; if curves.len() > 1 { rows.words() } else { 0 }];
+    let mut spare = narrowed.clone();
     let total = (n as f64).powi(3) / 6.0 + 1.0;
     let mut done = 0.0;
     for i in (0..n.saturating_sub(1)).rev() {
         rows.set(i, i + 1);
         cols.set(i + 1, i);
-        ccw.compute(points, i);
+        for (c, rows_c) in curves.iter().zip(ccw.iter_mut()) {
+            rows_c.compute(c, i);
+        }
         for j in i + 2..n {
             let rc = (rows.row(i), cols.row(j));
-            let found = for_valid_words(&planes, &ccw.ccw, rc, i, j, |_, _| true);
+            let found = if curves.len() == 1 {
+                for_valid_words(&planes[0], &ccw[0].ccw, rc, i, j, |_, _| true)
+            } else {
+                narrowed.fill(0);
+                let mut any = false;
+                for_valid_words(&planes[0], &ccw[0].ccw, rc, i, j, |w, bits| {
+                    narrowed[w] = bits;
+                    any = true;
+                    false
+                });
+                let last = curves.len() - 1;
+                let mut found = any;
+                for c in (1..curves.len()).take_while(|_| any) {
+                    spare.fill(0);
+                    let (prev, next) = (&narrowed, &mut spare);
+                    // The last curve stops at the first apex left.
+                    found = false;
+                    for_valid_words(&planes[c], &ccw[c].ccw, (prev, rc.1), i, j, |w, bits| {
+                        next[w] = bits;
+                        found = true;
+                        c == last
+                    });
+                    std::mem::swap(&mut narrowed, &mut spare);
+                    if !found {
+                        break;
+                    }
+                }
+                found
+            };
             if found {
                 rows.set(i, j);
                 cols.set(j, i);
@@ -114,7 +161,13 @@ pub(crate) fn decide(points: &[Point], progress: &mut dyn FnMut(f64)) -> Table {
 /// A triangulation of the whole polygon from a filled table, or `None` when
 /// `Q[0][n−1]` is false. Triangles come out as `[i, k, j]`, `i < k < j`.
 pub(crate) fn witness(points: &[Point], table: &Table) -> Option<Vec<[u32; 3]>> {
-    let n = points.len();
+    witness_common(&[points], table)
+}
+
+/// [`witness`] for a table of [`decide_common`]: every triangle is valid on
+/// every curve.
+pub(crate) fn witness_common(curves: &[&[Point]], table: &Table) -> Option<Vec<[u32; 3]>> {
+    let n = curves[0].len();
     if n < 3 || !table.rows.get(0, n - 1) {
         return None;
     }
@@ -125,7 +178,12 @@ pub(crate) fn witness(points: &[Point], table: &Table) -> Option<Vec<[u32; 3]>> 
             continue;
         }
         let k = (i + 1..j).find(|&k| {
-            table.rows.get(i, k) && table.cols.get(j, k) && table.planes.is_valid(points, i, k, j)
+            table.rows.get(i, k)
+                && table.cols.get(j, k)
+                && curves
+                    .iter()
+                    .zip(&table.planes)
+                    .all(|(c, planes)| planes.is_valid(c, i, k, j))
         })?;
         out.push([i as u32, k as u32, j as u32]);
         stack.push((i, k));

@@ -218,6 +218,39 @@ pub fn triangulate_progress(
     })
 }
 
+/// A triangulation that is an immersion triangulation of every curve in
+/// `curves` at once (same number of points; point `v` of each curve
+/// corresponds), or `None` when there is none. Curves with a common
+/// triangulation morph into each other without a single edge flip: the
+/// compatible morph of docs/design.md §5 applies directly.
+///
+/// The decision DP with the apex set of each chord narrowed to triangles
+/// valid on every curve: O(n³/64) word operations per curve, exact
+/// predicates throughout.
+///
+/// ```
+/// use immerse::Point;
+/// use immerse::immersion::{common_triangulation, Immersion};
+/// let square = [Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 1.0), Point::new(0.0, 1.0)];
+/// // A dart (vertex 3 is reflex): only the diagonal 1–3 is inside it.
+/// let dart = [Point::new(0.0, 0.0), Point::new(2.0, -2.0), Point::new(4.0, 0.0), Point::new(2.0, -1.0)];
+/// let t = common_triangulation(&[&square, &dart]).expect("a common triangulation");
+/// assert_eq!(t, vec![[0, 1, 3], [1, 2, 3]]);
+/// for curve in [&square[..], &dart[..]] {
+///     assert!(Immersion { points: curve.to_vec(), triangles: t.clone() }.is_immersion());
+/// }
+/// ```
+pub fn common_triangulation(curves: &[&[Point]]) -> Option<Vec<[u32; 3]>> {
+    let n = curves.first()?.len();
+    if curves.iter().any(|c| c.len() != n || precheck(c).is_err()) {
+        return None;
+    }
+    let table = dp::decide_common(curves, &mut |_| {});
+    let mut triangles = dp::witness_common(curves, &table)?;
+    triangles.sort_unstable();
+    Some(triangles)
+}
+
 /// Bytes of working memory the decision DP uses for `n` points (reported by
 /// the benchmarks).
 pub fn dp_memory_bytes(n: usize) -> usize {
@@ -275,6 +308,55 @@ mod tests {
             }
         }
         assert!(pos > 200 && neg > 200, "{pos} {neg}");
+    }
+
+    /// Exhaustive: a triangulation of 0..n valid on every curve?
+    fn brute_common(curves: &[&[Point]], i: usize, j: usize) -> bool {
+        if j == i + 1 {
+            return true;
+        }
+        (i + 1..j).any(|k| {
+            curves.iter().all(|c| is_valid_triangle(c, i, k, j))
+                && brute_common(curves, i, k)
+                && brute_common(curves, k, j)
+        })
+    }
+
+    #[test]
+    fn common_triangulation_agrees_with_exhaustive_search() {
+        let mut r = rng(29);
+        let (mut pos, mut neg) = (0, 0);
+        for round in 0..20000 {
+            let n = 4 + (r() * 7.0) as usize;
+            let g = if round % 3 == 0 { 3.0 } else { 1000.0 };
+            let mut curve = || -> Vec<Point> {
+                (0..n)
+                    .map(|_| Point::new((r() * g).floor(), (r() * g).floor()))
+                    .collect()
+            };
+            let (a, b) = (curve(), curve());
+            // Only pairs where each curve alone is an immersed disk ask the
+            // common question (others are refused before the DP).
+            if !brute(&a, 0, n - 1)
+                || !brute(&b, 0, n - 1)
+                || precheck(&a).is_err()
+                || precheck(&b).is_err()
+            {
+                continue;
+            }
+            let curves = [&a[..], &b[..]];
+            let expect = brute_common(&curves, 0, n - 1);
+            let got = common_triangulation(&curves);
+            assert_eq!(got.is_some(), expect, "{a:?} {b:?}");
+            if let Some(t) = got {
+                assert_eq!(check(&a, &t), Ok(()), "{a:?}");
+                assert_eq!(check(&b, &t), Ok(()), "{b:?}");
+                pos += 1;
+            } else {
+                neg += 1;
+            }
+        }
+        assert!(pos > 20 && neg > 20, "{pos} {neg}");
     }
 
     #[test]

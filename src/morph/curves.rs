@@ -452,8 +452,6 @@ impl<'a> Triangulations<'a> {
     }
 }
 
-/// Equalises counts (falling back from resampling to insertion when
-/// resampling would make a curve not self-overlapping) and triangulates.
 pub(crate) fn prepare(
     tri: &Triangulations<'_>,
     counts: Counts,
@@ -579,11 +577,7 @@ pub(crate) fn sides(p: &Prepared, k: usize, options: &CurveMorphOptions) -> Side
         || side(a, ta, &b_in_a, &tb_in_a),
         || side(b, tb, &a_in_b, &ta_in_b),
     );
-    let lex = |p: &[Point]| -> Vec<u64> {
-        p.iter()
-            .flat_map(|q| [q.x.to_bits(), q.y.to_bits()])
-            .collect()
-    };
+    let lex = crate::geom::polygon::lex_key;
     // The disk route compares where each side reaches the other
     // triangulation (Mukherjee & Gopi); the target route compares path
     // lengths. A side that failed loses.
@@ -607,45 +601,118 @@ pub(crate) fn sides(p: &Prepared, k: usize, options: &CurveMorphOptions) -> Side
     }
 }
 
+/// A triangle list.
+type Triangles = Vec<[u32; 3]>;
+
+/// How many shifts on each side of the chosen one a common triangulation
+/// is looked for, by vertex count: each try is a decision DP over both
+/// curves (O(n³/64) word operations), so the reach shrinks as n grows, and
+/// past the last bound none is tried (the plan keeps the curves' own
+/// triangulations).
+const COMMON_REACH: [(usize, usize); 3] = [(600, 3), (1500, 1), (3000, 0)];
+
+/// A triangulation valid on both curves at once, at the shift `k` or one
+/// within the [`COMMON_REACH`] of it (nearest first; `b[(v + shift) % n]`
+/// corresponds to `a[v]`): `(shift, triangles of a, triangles of b)`. The
+/// curves then morph without a single edge flip (often along a straighter
+/// and always along a cheaper way than a flip route). Improved by max–min
+/// flips that keep it common unless `quality` is [`Quality::Any`].
+fn common_near(
+    a: &[Point],
+    b: &[Point],
+    k: usize,
+    quality: Quality,
+) -> Option<(usize, Triangles, Triangles)> {
+    let n = a.len();
+    let (_, reach) = COMMON_REACH.iter().find(|&&(most, _)| n <= most)?;
+    let reach = (*reach).min(n / 2);
+    // Searched from one curve chosen by coordinates, so that swapping the
+    // curves finds the same triangulation at the same pairing.
+    let swap = crate::geom::polygon::lex_key(b) < crate::geom::polygon::lex_key(a);
+    let (base, other, k) = if swap { (b, a, (n - k) % n) } else { (a, b, k) };
+    let shifts = std::iter::once(k).chain((1..=reach).flat_map(|d| [(k + d) % n, (k + n - d) % n]));
+    for shift in shifts {
+        // other[(v + shift) % n] corresponds to base[v].
+        let other_in_base: Vec<Point> = (0..n).map(|i| other[(i + shift) % n]).collect();
+        let curves = [base, &other_in_base[..]];
+        let Some(t) = crate::immersion::common_triangulation(&curves) else {
+            continue;
+        };
+        let t = match quality {
+            Quality::Any => t,
+            _ => crate::quality::improve_common(&curves, t),
+        };
+        let t_other = shift_triangles(n, &t, (n - shift) % n);
+        return Some(if swap {
+            ((n - shift) % n, t_other, t)
+        } else {
+            (shift, t, t_other)
+        });
+    }
+    None
+}
+
 /// The curves prepared and both sides planned as the options ask: one
 /// rule's shift, or for [`Correspondence::Best`] the trial morphs of the
-/// outline and min-flips rules, keeping the one whose vertices travel
-/// less (the detour of docs/design.md §7b, whose denominator both share).
+/// outline and min-flips rules. Each rule is planned with the curves'
+/// own triangulations and, where the curves have one near the rule's
+/// shift, with a common triangulation (no flips); of all these the plan
+/// whose vertices travel less is kept (the detour of docs/design.md §7b,
+/// whose denominator they share).
 pub(crate) fn plan(
     a: &[Point],
     b: &[Point],
     options: &CurveMorphOptions,
 ) -> Result<(Prepared, Sides), CurveMorphError> {
     let tri = Triangulations::new(a, b, options.quality);
-    let one = |rule: Correspondence| -> Result<(Prepared, Sides), CurveMorphError> {
+    let one = |rule: Correspondence| -> Result<Vec<(Prepared, Sides)>, CurveMorphError> {
         let p = prepare(&tri, options.counts, rule)?;
         let k = match p.shift {
             Some(k) => k,
             None => choose_shift(&p.a, &p.b, &p.ta, &p.tb, rule),
         };
-        let s = sides(&p, k, options);
-        Ok((p, s))
+        // The plan with the curves' own triangulations and the plan with a
+        // common one are independent: side by side.
+        let (own, common) = rayon::join(
+            || sides(&p, k, options),
+            || {
+                let (shift, ta, tb) = common_near(&p.a, &p.b, k, options.quality)?;
+                let q = Prepared {
+                    a: p.a.clone(),
+                    b: p.b.clone(),
+                    ta,
+                    tb,
+                    shift: Some(shift),
+                    fallbacks: p.fallbacks.clone(),
+                };
+                let s = sides(&q, shift, options);
+                Some((q, s))
+            },
+        );
+        Ok(std::iter::once((p, own)).chain(common).collect())
     };
-    if options.correspondence != Correspondence::Best {
-        return one(options.correspondence);
-    }
-    let mut best: Option<(f64, (Prepared, Sides))> = None;
-    // The two trials are independent: planned side by side.
-    let (outline, min_flips) = rayon::join(
-        || one(Correspondence::Outline),
-        || one(Correspondence::MinFlips),
-    );
-    for candidate in [outline, min_flips] {
-        let candidate = candidate?;
-        let s = &candidate.1;
+    let candidates = if options.correspondence == Correspondence::Best {
+        // The two trials are independent: planned side by side.
+        let (outline, min_flips) = rayon::join(
+            || one(Correspondence::Outline),
+            || one(Correspondence::MinFlips),
+        );
+        let mut all = outline?;
+        all.extend(min_flips?);
+        all
+    } else {
+        one(options.correspondence)?
+    };
+    let travel = |(_, s): &(Prepared, Sides)| {
         let chosen = if s.use_a { &s.a } else { &s.b };
-        let travel = chosen.as_ref().map_or(f64::INFINITY, Staged::mean_travel);
-        if best.as_ref().is_none_or(|(t, _)| travel < *t) {
-            best = Some((travel, candidate));
+        chosen.as_ref().map_or(f64::INFINITY, Staged::mean_travel)
+    };
+    let mut best: Option<(f64, (Prepared, Sides))> = None;
+    for candidate in candidates {
+        let t = travel(&candidate);
+        if best.as_ref().is_none_or(|(b, _)| t < *b) {
+            best = Some((t, candidate));
         }
     }
-    match best {
-        Some((_, c)) => Ok(c),
-        None => one(Correspondence::MinFlips),
-    }
+    Ok(best.expect("every rule plans at least one candidate").1)
 }

@@ -67,31 +67,86 @@ pub fn improve(imm: Immersion) -> Immersion {
     if crate::immersion::check(&points, &triangles).is_err() {
         return Immersion { points, triangles };
     }
-    let n = points.len();
-    let mut tri = FlipTriangulation::new(n, &triangles);
+    let triangles = flip_while(points.len(), &triangles, |[a, b, c, d]| {
+        if !is_flippable(&points, a, b, c, d) {
+            return false;
+        }
+        debug_assert!(
+            [[a, b, d], [b, c, d]].iter().all(|&t| valid_on(&points, t)),
+            "a Delaunay flip produced an invalid triangle: a bug"
+        );
+        true
+    });
+    Immersion { points, triangles }
+}
+
+/// Improve a triangulation that is an immersion triangulation of every
+/// curve in `curves` (a common triangulation, see
+/// [`crate::immersion::common_triangulation`]) while it stays one: a
+/// diagonal is flipped when both new triangles are valid on every curve
+/// and the smallest angle of the quad, over all curves, grows. Each flip
+/// raises the sorted vector of per-triangle smallest angles
+/// lexicographically, so the loop terminates. Triangulations that are not
+/// common to the curves come back unchanged.
+pub(crate) fn improve_common(curves: &[&[Point]], triangles: Vec<[u32; 3]>) -> Vec<[u32; 3]> {
+    let Some(n) = curves.first().map(|c| c.len()) else {
+        return triangles;
+    };
+    if curves
+        .iter()
+        .any(|c| c.len() != n || crate::immersion::check(c, &triangles).is_err())
+    {
+        return triangles;
+    }
+    let worst = |t: [u32; 3]| {
+        curves
+            .iter()
+            .map(|c| {
+                let p = |v: u32| c[v as usize];
+                super::optimal::sin2_min_angle(p(t[0]), p(t[1]), p(t[2]))
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    flip_while(n, &triangles, |[a, b, c, d]| {
+        let new = [[a, b, d], [b, c, d]];
+        let old = worst([a, b, c]).min(worst([a, c, d]));
+        worst(new[0]).min(worst(new[1])) > old
+            && curves.iter().all(|c| new.iter().all(|&t| valid_on(c, t)))
+    })
+}
+
+/// Is the triangle (corners in cyclic order) valid on `points`? Sorted, as
+/// the validity predicate takes its corners (`d` may come before `a`: the
+/// quad is `a, b, c, d` cyclically).
+fn valid_on(points: &[Point], t: [u32; 3]) -> bool {
+    let [x, y, z] = crate::flip::canonical(t);
+    crate::immersion::is_valid_triangle(points, x as usize, y as usize, z as usize)
+}
+
+/// The flip loop shared by the improvements: keep a stack of diagonals, pop
+/// one, and flip it when `should_flip` accepts its quad `[a, b, c, d]`
+/// (cyclic order around diagonal `a–c`, `(a, b, c)` counter-clockwise, `d`
+/// across `a–c`); then push the four edges of the quad that are diagonals
+/// and not already queued. Returns the triangles sorted.
+fn flip_while(
+    n: usize,
+    triangles: &[[u32; 3]],
+    mut should_flip: impl FnMut([u32; 4]) -> bool,
+) -> Vec<[u32; 3]> {
+    let mut tri = FlipTriangulation::new(n, triangles);
     let mut stack: Vec<(u32, u32)> = tri.diagonals();
     let mut queued: rustc_hash::FxHashSet<(u32, u32)> = stack.iter().copied().collect();
     // Popped from the largest: deterministic.
     while let Some(e) = stack.pop() {
         queued.remove(&e);
-        // The quad [a, b, c, d] in cyclic order around diagonal a–c, with
-        // (a, b, c) counter-clockwise; d across a–c.
-        let Some(([a, b, c, d], _)) = tri.quad(e.0, e.1) else {
+        let Some((quad, _)) = tri.quad(e.0, e.1) else {
             continue;
         };
-        if !is_flippable(&points, a, b, c, d) {
+        if !should_flip(quad) {
             continue;
         }
+        let [a, b, c, d] = quad;
         tri.flip(a, c);
-        debug_assert!(
-            [[a, b, d], [b, c, d]].iter().all(|&t| {
-                // Sorted, as the validity predicate takes its corners (d may
-                // come before a: the quad is a, b, c, d cyclically).
-                let [x, y, z] = crate::flip::canonical(t);
-                crate::immersion::is_valid_triangle(&points, x as usize, y as usize, z as usize)
-            }),
-            "a Delaunay flip produced an invalid triangle: a bug"
-        );
         for q in [key(a, b), key(b, c), key(c, d), key(d, a)] {
             if q.1 - q.0 != 1 && q.1 - q.0 != n as u32 - 1 && queued.insert(q) {
                 stack.push(q);
@@ -100,7 +155,7 @@ pub fn improve(imm: Immersion) -> Immersion {
     }
     let mut triangles = tri.triangles().to_vec();
     triangles.sort_unstable();
-    Immersion { points, triangles }
+    triangles
 }
 
 /// Diagonal `a–c` of the quad `a, b, c, d` (with `(a, b, c)`

@@ -24,6 +24,7 @@ mod optimal;
 mod simple;
 
 pub use flips::improve;
+pub(crate) use flips::improve_common;
 
 use std::fmt;
 use std::str::FromStr;

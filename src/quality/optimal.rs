@@ -66,7 +66,7 @@ pub(crate) fn memory_bytes(n: usize) -> usize {
     36 * n * n + crate::immersion::dp_memory_bytes(n)
 }
 
-/// An `n × n` table of `f64` that the parallel fill writes cell by cell.
+/// A table of `f64` that the parallel fill writes cell by cell.
 struct Floats(Vec<AtomicU64>);
 
 impl Floats {
@@ -100,14 +100,20 @@ pub(crate) fn maxmin(points: &[Point], progress: &mut dyn FnMut(f64)) -> Option<
         progress(1.0);
         return None;
     }
-    let val = Floats::new(n * n, f64::NEG_INFINITY); // val[i n + j]
-    let val_t = Floats::new(n * n, f64::NEG_INFINITY); // val_t[j n + i]
-    let sum = Floats::new(n * n, 0.0);
-    let sum_t = Floats::new(n * n, 0.0);
+    // Row-major (value, sum) pairs at 2 (i n + j), and the transposed
+    // copy at 2 (j n + i), so both operands of a cell are read in order.
+    let fresh = |len: usize| {
+        let t = Floats::new(2 * len, 0.0);
+        for at in 0..len {
+            t.set(2 * at, f64::NEG_INFINITY);
+        }
+        t
+    };
+    let (rows, cols) = (fresh(n * n), fresh(n * n));
     let arg: Vec<AtomicU32> = (0..n * n).map(|_| AtomicU32::new(NONE)).collect();
     for i in 0..n - 1 {
-        val.set(i * n + i + 1, f64::INFINITY);
-        val_t.set((i + 1) * n + i, f64::INFINITY);
+        rows.set(2 * (i * n + i + 1), f64::INFINITY);
+        cols.set(2 * ((i + 1) * n + i), f64::INFINITY);
     }
     let share = |f: f64| DECIDE_SHARE + (1.0 - DECIDE_SHARE) * f;
     fill_by_tiles(n, &mut |f| progress(share(f)), |i, j| {
@@ -116,12 +122,13 @@ pub(crate) fn maxmin(points: &[Point], progress: &mut dyn FnMut(f64)) -> Option<
         }
         let (mut best_v, mut best_s, mut best_k) = (f64::NEG_INFINITY, f64::NEG_INFINITY, NONE);
         let (pi, pj) = (points[i], points[j]);
+        let (ri, cj) = (2 * i * n, 2 * j * n);
         table.for_candidates(points, i, j, |k, ccw| {
-            let lo = val.get(i * n + k).min(val_t.get(j * n + k));
+            let lo = rows.get(ri + 2 * k).min(cols.get(cj + 2 * k));
             if lo < best_v {
                 return false;
             }
-            let base = sum.get(i * n + k) + sum_t.get(j * n + k);
+            let base = rows.get(ri + 2 * k + 1) + cols.get(cj + 2 * k + 1);
             // A tie on the minimum at best wins on the sum, and q ≤ 1.
             if lo == best_v && base + 1.0 <= best_s {
                 return false;
@@ -135,10 +142,10 @@ pub(crate) fn maxmin(points: &[Point], progress: &mut dyn FnMut(f64)) -> Option<
             false
         });
         debug_assert_ne!(best_k, NONE, "a feasible cell without an apex: a bug");
-        val.set(i * n + j, best_v);
-        val_t.set(j * n + i, best_v);
-        sum.set(i * n + j, best_s);
-        sum_t.set(j * n + i, best_s);
+        rows.set(ri + 2 * j, best_v);
+        rows.set(ri + 2 * j + 1, best_s);
+        cols.set(cj + 2 * i, best_v);
+        cols.set(cj + 2 * i + 1, best_s);
         arg[i * n + j].store(best_k, Relaxed);
     });
     let mut out = Vec::with_capacity(n - 2);

@@ -226,8 +226,8 @@ pub fn dp_memory_bytes(n: usize) -> usize {
     let words = n.div_ceil(64).max(1);
     let summary = words.div_ceil(64);
     // Q rows, Q columns, half-plane masks and their transpose; the two
-    // summaries; the bad-vertex row.
-    (4 * n * words + 2 * n * summary + words) * 8
+    // summaries; the bad-vertex row; a box of four f64 per word of points.
+    (4 * n * words + 2 * n * summary + words) * 8 + n.div_ceil(64) * 32
 }
 
 #[cfg(test)]

@@ -7,13 +7,29 @@
 //! ([`immerse::improve`]), the max–min DP ([`immerse::triangulate_maxmin`],
 //! skipped above `--maxmin-up-to`, default 1000), and the DP tables' memory.
 //! `--sizes 500,1000` picks other n; `--shape circle` uses a regular n-gon.
+//!
+//! `--scale --cli PATH [--baseline OLD] [--baseline-up-to N]` instead times
+//! the command line at scale: `PATH check` on a spiral strip and on a blob
+//! (the stress generators' star-shaped curve) of 1,000 to 20,000 points,
+//! and `PATH triangulate --quality maxmin` at 1,000 to 4,000, each as a
+//! child process (wall time, median of 3, one run past 10 s; peak resident
+//! memory from `/usr/bin/time` when present), beside the same runs of an
+//! earlier binary `OLD` up to `N` points (default 10,000), with the growth
+//! exponent of each column fitted by least squares on log t against log n
+//! (n ≥ 2,000).
 
+use std::path::{Path, PathBuf};
+use std::process::Command;
 use std::time::Instant;
 
 use immerse::geom::Point;
 use immerse::immersion::dp_memory_bytes;
 use immerse::quality::maxmin_memory_bytes;
 use immerse::{improve, triangulate, triangulate_maxmin};
+
+#[path = "../tests/common/stress.rs"]
+#[allow(dead_code, reason = "only the curve generators are used here")]
+mod harness;
 
 /// A spiral strip of `n` vertices (n even) turning `turns` times.
 fn spiral_strip(n: usize, turns: f64) -> Vec<Point> {
@@ -55,7 +71,166 @@ fn fmt_ms(s: f64) -> String {
     format!("{:.2} ms", s * 1e3)
 }
 
+/// The star-shaped blob of the stress generators (simple, nearly convex),
+/// with a fixed seed.
+fn blob(n: usize) -> Vec<Point> {
+    harness::blob(&mut harness::Rng::new(7, n as u64), n)
+}
+
+fn arg(name: &str) -> Option<String> {
+    std::env::args().skip_while(|a| a != name).nth(1)
+}
+
+/// One timed child run: wall seconds and peak resident kilobytes (when
+/// `/usr/bin/time` is there to tell).
+fn run_once(cli: &Path, args: &[&str]) -> (f64, Option<u64>) {
+    let time = Path::new("/usr/bin/time");
+    let stats = tempfile::NamedTempFile::new().expect("temporary file");
+    let mut cmd = if time.exists() {
+        let mut c = Command::new(time);
+        c.arg("-f").arg("%M").arg("-o").arg(stats.path()).arg(cli);
+        c
+    } else {
+        Command::new(cli)
+    };
+    cmd.args(args).stdout(std::process::Stdio::null());
+    let s = Instant::now();
+    let status = cmd.status().expect("run the command line");
+    let secs = s.elapsed().as_secs_f64();
+    assert!(status.success(), "{} {args:?}: {status}", cli.display());
+    let kb = std::fs::read_to_string(stats.path())
+        .ok()
+        .and_then(|t| t.trim().lines().last()?.trim().parse().ok());
+    (secs, kb)
+}
+
+/// Median wall time and largest peak memory of up to 3 runs (1 when the
+/// first takes more than 10 s).
+fn run_median(cli: &Path, args: &[&str]) -> (f64, Option<u64>) {
+    let mut times = Vec::new();
+    let mut peak = None;
+    for _ in 0..3 {
+        let (t, kb) = run_once(cli, args);
+        times.push(t);
+        peak = peak.max(kb);
+        if t > 10.0 {
+            break;
+        }
+    }
+    times.sort_by(f64::total_cmp);
+    (times[times.len() / 2], peak)
+}
+
+/// Least-squares slope of log t against log n, over n ≥ 2,000 (below,
+/// process start-up weighs too much).
+fn growth(points: &[(usize, f64)]) -> Option<f64> {
+    let points: Vec<(usize, f64)> = points.iter().copied().filter(|p| p.0 >= 2000).collect();
+    if points.len() < 2 {
+        return None;
+    }
+    let xy: Vec<(f64, f64)> = points
+        .iter()
+        .map(|&(n, t)| ((n as f64).ln(), t.ln()))
+        .collect();
+    let m = xy.len() as f64;
+    let (sx, sy) = xy.iter().fold((0.0, 0.0), |(a, b), &(x, y)| (a + x, b + y));
+    let (mx, my) = (sx / m, sy / m);
+    let num: f64 = xy.iter().map(|&(x, y)| (x - mx) * (y - my)).sum();
+    let den: f64 = xy.iter().map(|&(x, _)| (x - mx) * (x - mx)).sum();
+    Some(num / den)
+}
+
+fn fmt_run(r: Option<(f64, Option<u64>)>) -> (String, String) {
+    match r {
+        None => ("not run".to_owned(), String::new()),
+        Some((t, kb)) => (
+            format!("{t:.2} s"),
+            kb.map_or_else(
+                || "?".to_owned(),
+                |kb| format!("{:.0} MB", kb as f64 / 1024.0),
+            ),
+        ),
+    }
+}
+
+fn fmt_growth(g: Option<f64>) -> String {
+    g.map_or_else(|| "–".to_owned(), |g| format!("n^{g:.2}"))
+}
+
+/// The `--scale` table (module docs).
+fn scale() {
+    let cli = PathBuf::from(arg("--cli").unwrap_or_else(|| "target/release/immerse".to_owned()));
+    let baseline = arg("--baseline").map(PathBuf::from);
+    let up_to: usize = arg("--baseline-up-to")
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(10_000);
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let curve = |shape: &str, n: usize| {
+        let pts = if shape == "blob" {
+            blob(n)
+        } else {
+            spiral_strip(n, 2.0)
+        };
+        let path = dir.path().join(format!("{shape}-{n}.json"));
+        std::fs::write(&path, harness::curve_json(shape, &pts)).expect("write the curve");
+        path
+    };
+    let jobs: [(&str, &[&str], &[usize]); 2] = [
+        ("check", &["check"], &[1000, 2000, 5000, 10_000, 20_000]),
+        (
+            "triangulate --quality maxmin",
+            &["triangulate", "--quality", "maxmin"],
+            &[1000, 2000, 4000],
+        ),
+    ];
+    for (title, args, sizes) in jobs {
+        println!(
+            "`immerse {title}` (wall time, median of 3 or one run past 10 s; peak resident memory)\n"
+        );
+        println!("| curve | n | before | before memory | after | after memory | DP tables |");
+        println!("|---|---|---|---|---|---|---|");
+        for shape in ["spiral", "blob"] {
+            let (mut before, mut after) = (Vec::new(), Vec::new());
+            for &n in sizes {
+                let path = curve(shape, n);
+                let file = path.to_str().expect("a UTF-8 path");
+                let all: Vec<&str> = args.iter().copied().chain([file]).collect();
+                let old = baseline
+                    .as_deref()
+                    .filter(|_| n <= up_to)
+                    .map(|b| run_median(b, &all));
+                let new = run_median(&cli, &all);
+                if let Some((t, _)) = old {
+                    before.push((n, t));
+                }
+                after.push((n, new.0));
+                let (bt, bm) = fmt_run(old);
+                let (at, am) = fmt_run(Some(new));
+                let tables = if title == "check" {
+                    dp_memory_bytes(n)
+                } else {
+                    maxmin_memory_bytes(n)
+                };
+                println!(
+                    "| {shape} | {n} | {bt} | {bm} | {at} | {am} | {:.0} MB |",
+                    tables as f64 / 1e6
+                );
+            }
+            println!(
+                "| {shape} | growth | {} | | {} | | |",
+                fmt_growth(growth(&before)),
+                fmt_growth(growth(&after))
+            );
+        }
+        println!();
+    }
+}
+
 fn main() {
+    if std::env::args().any(|a| a == "--scale") {
+        scale();
+        return;
+    }
     let maxmin_up_to: usize = std::env::args()
         .skip_while(|a| a != "--maxmin-up-to")
         .nth(1)

@@ -8,7 +8,7 @@
 //! in exactly two, no two diagonals cross (interleaved endpoints), and every
 //! triangle is valid ([`is_valid_triangle`]).
 //!
-//! Complexity: O(n log n) (edge counting by sorting, crossing test by a
+//! Complexity: O(n) (edge counting by counting sorts, crossing test by a
 //! stack over the diagonals as nested intervals), O(n) exact predicates.
 
 use super::valid::is_valid_triangle;
@@ -117,12 +117,12 @@ pub fn check(points: &[Point], triangles: &[[u32; 3]]) -> Result<(), ImmersionDe
             });
         }
     }
-    // Edge multiplicities by sorting.
-    let mut edges: Vec<(u32, u32)> = triangles
+    // Edge multiplicities by sorting (two stable counting passes: O(n)).
+    let edges: Vec<(u32, u32)> = triangles
         .iter()
         .flat_map(|&[a, b, c]| [(a, b), (b, c), (a, c)])
         .collect();
-    edges.sort_unstable();
+    let edges = counting_sort(&counting_sort(&edges, n, |e| e.1), n, |e| e.0);
     let is_boundary = |(a, b): (u32, u32)| b == a + 1 || (a == 0 && b as usize == n - 1);
     let mut counted: Vec<((u32, u32), usize)> = Vec::with_capacity(edges.len());
     for e in edges {
@@ -168,7 +168,8 @@ pub fn check(points: &[Point], triangles: &[[u32; 3]]) -> Result<(), ImmersionDe
     // Crossing: (a, b) and (c, d) cross iff a < c < b < d. Sorted by a
     // ascending then b descending, the diagonals are a laminar family of
     // intervals iff each one nests inside the innermost open interval.
-    diagonals.sort_unstable_by(|x, y| x.0.cmp(&y.0).then(y.1.cmp(&x.1)));
+    let last = n as u32 - 1;
+    let diagonals = counting_sort(&counting_sort(&diagonals, n, |d| last - d.1), n, |d| d.0);
     let mut open: Vec<(u32, u32)> = Vec::new();
     for &d in &diagonals {
         while open.last().is_some_and(|top| top.1 <= d.0) {
@@ -185,6 +186,29 @@ pub fn check(points: &[Point], triangles: &[[u32; 3]]) -> Result<(), ImmersionDe
         open.push(d);
     }
     check_triangles(points, triangles)
+}
+
+/// `pairs` stably sorted by `key`, whose values are below `n`: a counting
+/// sort, O(len + n).
+fn counting_sort(
+    pairs: &[(u32, u32)],
+    n: usize,
+    key: impl Fn((u32, u32)) -> u32,
+) -> Vec<(u32, u32)> {
+    let mut start = vec![0usize; n + 1];
+    for &p in pairs {
+        start[key(p) as usize + 1] += 1;
+    }
+    for v in 0..n {
+        start[v + 1] += start[v];
+    }
+    let mut out = vec![(0, 0); pairs.len()];
+    for &p in pairs {
+        let at = &mut start[key(p) as usize];
+        out[*at] = p;
+        *at += 1;
+    }
+    out
 }
 
 /// The geometric half of [`check`]: every triangle is valid (counter-

@@ -13,8 +13,10 @@
 //! typically very thin triangles). [`crate::quality`] improves it by
 //! Delaunay flips or computes the max–min-angle one.
 //!
-//! Complexity: O(n³/64) word operations and O(n² log n) exact predicates;
-//! memory 5n²/8 bytes (0.6 MB at n = 1000, 2.5 MB at n = 2000). Every
+//! Complexity: O(n³/64) word operations in the worst case (far fewer in
+//! practice, see `dp`) and O(n²) exact predicates, in parallel; memory about
+//! n²/2 bytes ([`dp_memory_bytes`]: 0.5 MB at n = 1000, 200 MB at
+//! n = 20,000). Every
 //! decision is exact (`geom::predicates`); only [`Immersion::min_angle`]
 //! measures in floating point.
 //!
@@ -130,8 +132,8 @@ impl NotSelfOverlapping {
     }
 }
 
-/// Most points the decision DP accepts: its five n × n bit tables take
-/// 5n²/8 bytes (250 MB at this limit) and its time grows as n³/64.
+/// Most points the decision DP accepts: its four n × n bit tables take
+/// n²/2 bytes (200 MB at this limit) and its time grows as n³/64 at worst.
 pub const MAX_DP_POINTS: usize = 20_000;
 
 /// Check the preconditions shared by every triangulator: at least 3 points,
@@ -207,7 +209,7 @@ pub fn triangulate_progress(
     let triangles = dp::witness(points, &table);
     debug_assert_eq!(
         triangles.is_some(),
-        table.rows.get(0, points.len() - 1),
+        table.get(0, points.len() - 1),
         "the witness search disagrees with the decision table: a bug"
     );
     let mut triangles = triangles.ok_or(NotSelfOverlapping::NoValidTriangulation)?;
@@ -224,9 +226,9 @@ pub fn triangulate_progress(
 /// triangulation morph into each other without a single edge flip: the
 /// compatible morph of docs/design.md §5 applies directly.
 ///
-/// The decision DP with the apex set of each chord narrowed to triangles
-/// valid on every curve: O(n³/64) word operations per curve, exact
-/// predicates throughout.
+/// The decision DP of the first curve with each chord filtered by every
+/// curve's fan cones and each apex tested on every curve: the cost of about
+/// one decision per curve, exact predicates throughout.
 ///
 /// ```
 /// use immerse::Point;
@@ -255,9 +257,10 @@ pub fn common_triangulation(curves: &[&[Point]]) -> Option<Vec<[u32; 3]>> {
 /// the benchmarks).
 pub fn dp_memory_bytes(n: usize) -> usize {
     let words = n.div_ceil(64).max(1);
-    // Q rows, Q columns, half-plane masks, their transpose, ccw rows, plus
-    // the window and bad-vertex rows.
-    (5 * n + 2) * words * 8
+    let summary = words.div_ceil(64);
+    // Q rows, Q columns, half-plane masks and their transpose; the two
+    // summaries; the bad-vertex row; a box of four f64 per word of points.
+    (4 * n * words + 2 * n * summary + words) * 8 + n.div_ceil(64) * 32
 }
 
 #[cfg(test)]
@@ -296,7 +299,7 @@ mod tests {
                 .collect();
             let table = dp::decide(&pts, &mut |_| {});
             let expect = brute(&pts, 0, n - 1);
-            assert_eq!(table.rows.get(0, n - 1), expect, "{pts:?}");
+            assert_eq!(table.get(0, n - 1), expect, "{pts:?}");
             let w = dp::witness(&pts, &table);
             assert_eq!(w.is_some(), expect);
             if let Some(mut t) = w {
@@ -381,9 +384,9 @@ mod tests {
         for i in (0..n - 1).rev() {
             q[i][i + 1] = true;
             for j in i + 2..n {
-                q[i][j] =
-                    (i + 1..j).any(|k| q[i][k] && q[k][j] && is_valid_triangle(&pts, i, k, j));
-                assert_eq!(table.rows.get(i, j), q[i][j], "cell ({i}, {j})");
+                q[i][j] = table.may_be_diagonal(i, j)
+                    && (i + 1..j).any(|k| q[i][k] && q[k][j] && is_valid_triangle(&pts, i, k, j));
+                assert_eq!(table.get(i, j), q[i][j], "cell ({i}, {j})");
                 assert_eq!(table.cols.get(j, i), q[i][j], "cell ({i}, {j})");
                 if q[i][j] { yes += 1 } else { no += 1 }
             }

@@ -22,6 +22,8 @@
 //! direction at `v`; every triangle with a corner at such a `v` is defined to
 //! be invalid (cleaned curves have no such edges).
 
+use rayon::prelude::*;
+
 use crate::geom::Point;
 use crate::geom::predicates::{is_fan_order_less, orient};
 
@@ -43,11 +45,6 @@ impl BitMatrix {
         }
     }
 
-    /// Number of `u64` words per row.
-    pub(crate) fn words(&self) -> usize {
-        self.words
-    }
-
     /// Bytes of storage.
     pub(crate) fn bytes(&self) -> usize {
         self.data.len() * 8
@@ -57,20 +54,55 @@ impl BitMatrix {
         &self.data[r * self.words..(r + 1) * self.words]
     }
 
-    pub(crate) fn row_mut(&mut self, r: usize) -> &mut [u64] {
-        &mut self.data[r * self.words..(r + 1) * self.words]
-    }
-
     pub(crate) fn get(&self, r: usize, c: usize) -> bool {
         self.data[r * self.words + c / 64] >> (c % 64) & 1 == 1
     }
 
-    pub(crate) fn set(&mut self, r: usize, c: usize) {
-        self.data[r * self.words + c / 64] |= 1 << (c % 64);
+    /// The transpose, by 64 × 64 blocks (rows of blocks in parallel).
+    fn transpose(&self) -> BitMatrix {
+        let n = self.data.len() / self.words;
+        let mut out = BitMatrix::new(n);
+        let words = self.words;
+        out.data
+            .par_chunks_mut(64 * words)
+            .enumerate()
+            .for_each(|(bx, dst)| {
+                // dst holds rows 64 bx .. 64 bx + 64 of the transpose.
+                for bv in 0..words {
+                    let mut block = [0u64; 64];
+                    for (t, b) in block.iter_mut().enumerate() {
+                        let v = 64 * bv + t;
+                        if v < n {
+                            *b = self.data[v * words + bx];
+                        }
+                    }
+                    transpose64(&mut block);
+                    for (t, &b) in block.iter().enumerate() {
+                        if let Some(d) = dst.get_mut(t * words + bv) {
+                            *d = b;
+                        }
+                    }
+                }
+            });
+        out
     }
+}
 
-    pub(crate) fn toggle(&mut self, r: usize, c: usize) {
-        self.data[r * self.words + c / 64] ^= 1 << (c % 64);
+/// Transpose a 64 × 64 bit block in place (bit `c` of word `r` is entry
+/// `(r, c)`), by swapping ever smaller sub-blocks.
+fn transpose64(a: &mut [u64; 64]) {
+    let mut j = 32;
+    let mut m: u64 = 0x0000_0000_FFFF_FFFF;
+    while j != 0 {
+        for k in 0..64 {
+            if k & j == 0 {
+                let t = ((a[k] >> j) ^ a[k + j]) & m;
+                a[k + j] ^= t;
+                a[k] ^= t << j;
+            }
+        }
+        j >>= 1;
+        m ^= m << j;
     }
 }
 
@@ -105,26 +137,34 @@ pub(crate) struct HalfPlanes {
 }
 
 impl HalfPlanes {
+    /// The masks, from n² exact orientations (rows in parallel).
     pub(crate) fn new(points: &[Point]) -> Self {
         let n = points.len();
         let mut right = BitMatrix::new(n);
-        let mut right_t = BitMatrix::new(n);
-        let mut bad = vec![0u64; right.words()];
-        let mut bad_flags = vec![false; n];
-        for v in 0..n {
-            let (pv, pn) = (points[v], points[(v + 1) % n]);
-            if pv == pn {
-                bad[v / 64] |= 1 << (v % 64);
-                bad_flags[v] = true;
-                continue;
-            }
-            for (x, &px) in points.iter().enumerate() {
-                if orient(pv, pn, px).is_cw() {
-                    right.set(v, x);
-                    right_t.set(x, v);
-                }
-            }
+        let words = right.words;
+        let bad_flags: Vec<bool> = (0..n).map(|v| points[v] == points[(v + 1) % n]).collect();
+        let mut bad = vec![0u64; words];
+        for v in (0..n).filter(|&v| bad_flags[v]) {
+            bad[v / 64] |= 1 << (v % 64);
         }
+        right
+            .data
+            .par_chunks_mut(words)
+            .enumerate()
+            .for_each(|(v, row)| {
+                if bad_flags[v] {
+                    return;
+                }
+                let (pv, pn) = (points[v], points[(v + 1) % n]);
+                for (w, word) in row.iter_mut().enumerate() {
+                    let mut bits = 0u64;
+                    for (b, &px) in points.iter().skip(64 * w).take(64).enumerate() {
+                        bits |= u64::from(orient(pv, pn, px).is_cw()) << b;
+                    }
+                    *word = bits;
+                }
+            });
+        let right_t = right.transpose();
         Self {
             right,
             right_t,
@@ -139,7 +179,9 @@ impl HalfPlanes {
     }
 
     /// Validity of `(i, k, j)`, `i < k < j`, from the masks and one exact
-    /// orientation. Same predicate as [`is_valid_triangle`].
+    /// orientation. Same predicate as [`is_valid_triangle`] (the tests hold
+    /// the masks to it); the common decision tests the other curves' apexes
+    /// with it.
     pub(crate) fn is_valid(&self, points: &[Point], i: usize, k: usize, j: usize) -> bool {
         if self.bad_flags[i] || self.bad_flags[k] || self.bad_flags[j] {
             return false;
@@ -228,236 +270,6 @@ pub fn is_valid_triangle(points: &[Point], a: usize, b: usize, c: usize) -> bool
         && is_fan_order_less(p(c), next(c), p(a), p(b))
 }
 
-/// The exact angular order of the points `p_k`, `k ∈ ks`, around `o`
-/// (counter-clockwise from the +x ray), sorted in place. Points equal to
-/// `o` must have been removed by the caller.
-///
-/// A cheap float pseudo-angle sorts first; an insertion pass with the exact
-/// comparator (half-plane by coordinate comparison, then [`orient`]) repairs
-/// the few pairs that rounding put out of order, so the result is exact.
-/// Returns true when `packed` then holds trusted quantised keys aligned
-/// with `ks`: positions whose keys differ by two or more are on different
-/// rays.
-pub(crate) fn sort_around(
-    points: &[Point],
-    o: Point,
-    ks: &mut Vec<u32>,
-    packed: &mut Vec<u64>,
-) -> bool {
-    // Diamond pseudo-angle in [0, 4): monotone in the true angle up to
-    // rounding; only a hint for the exact repair below.
-    let pseudo = |k: u32| {
-        let q = points[k as usize];
-        let (dx, dy) = (q.x - o.x, q.y - o.y);
-        let s = dx.abs() + dy.abs();
-        if !s.is_finite() {
-            // An overflowing difference: no usable key (marks all untrusted).
-            return f64::NAN;
-        }
-        if upper(o, q) {
-            if dx >= 0.0 { dy / s } else { 1.0 - dx / s }
-        } else if dx <= 0.0 {
-            2.0 - dy / s
-        } else {
-            3.0 + dx / s
-        }
-    };
-    if ks.iter().all(|&k| k < 1 << INDEX_BITS) {
-        // Sort plain u64s: the key quantised to 42 bits above a 22-bit index.
-        let mut finite = true;
-        packed.clear();
-        packed.extend(ks.iter().map(|&k| {
-            let key = pseudo(k);
-            finite &= key.is_finite();
-            let q = (key * QUANTA).clamp(0.0, QUANTA * 4.0 - 1.0);
-            ((q as u64) << INDEX_BITS) | u64::from(k)
-        }));
-        packed.sort_unstable();
-        ks.clear();
-        ks.extend(packed.iter().map(|&x| (x & ((1 << INDEX_BITS) - 1)) as u32));
-        for x in packed.iter_mut() {
-            *x >>= INDEX_BITS;
-        }
-        // The float key is within a few ulps of the exact pseudo-angle (of
-        // order 1e-15 ≪ one quantum ≈ 9e-13), so keys two or more quanta
-        // apart are already in their exact order; only closer pairs are
-        // compared exactly. Non-finite keys (overflowing differences) are
-        // not trusted at all.
-        let trusted = finite;
-        repair(points, o, ks, packed, trusted);
-        trusted
-    } else {
-        ks.sort_by(|&a, &b| pseudo(a).total_cmp(&pseudo(b)));
-        packed.clear();
-        packed.resize(ks.len(), 0);
-        repair(points, o, ks, packed, false);
-        false
-    }
-}
-
-/// Exact repair by insertion sort, O(n + inversions). With `trusted`
-/// keys (sorted ascending, aligned with `ks` and swapped along), a pair two
-/// or more quanta apart is known to be in order and is not compared.
-fn repair(points: &[Point], o: Point, ks: &mut [u32], keys: &mut [u64], trusted: bool) {
-    for t in 1..ks.len() {
-        let mut s = t;
-        while s > 0
-            && (!trusted || keys[s] < keys[s - 1] + 2)
-            && angle_less(points, o, ks[s], ks[s - 1])
-        {
-            ks.swap(s, s - 1);
-            keys.swap(s, s - 1);
-            s -= 1;
-        }
-    }
-}
-
-/// Quanta per unit of pseudo-angle in the packed keys of [`sort_around`].
-const QUANTA: f64 = (1u64 << 40) as f64;
-
-/// Index bits in the packed sort keys of [`sort_around`].
-const INDEX_BITS: u32 = 22;
-
-/// Is the direction `q − o` in the half-open upper half [0, π)? Exact.
-#[inline]
-fn upper(o: Point, q: Point) -> bool {
-    q.y > o.y || (q.y == o.y && q.x > o.x)
-}
-
-/// Exact: is the angle of `p_a − o` strictly less than that of `p_b − o`?
-#[inline]
-pub(crate) fn angle_less(points: &[Point], o: Point, a: u32, b: u32) -> bool {
-    let (pa, pb) = (points[a as usize], points[b as usize]);
-    match (upper(o, pa), upper(o, pb)) {
-        (true, false) => true,
-        (false, true) => false,
-        _ => orient(o, pa, pb).is_ccw(),
-    }
-}
-
-/// Is `p_b` on the same ray from `o` as `p_a` (equal angle)? Exact.
-#[inline]
-pub(crate) fn same_ray(points: &[Point], o: Point, a: u32, b: u32) -> bool {
-    let (pa, pb) = (points[a as usize], points[b as usize]);
-    upper(o, pa) == upper(o, pb) && !orient(o, pa, pb).is_ccw() && !orient(o, pb, pa).is_ccw()
-}
-
-/// For a fixed apex-row vertex `i`, the sets
-/// `ccw.row(j) = { k : i < k < n, orient(p_i, p_k, p_j) counter-clockwise }`
-/// for every `j > i`, in O(n log n + n²/64) by a rotating half-plane window
-/// over the exact angular order around `p_i`.
-///
-/// `orient(p_i, p_k, p_j) > 0` iff `p_k` lies strictly right of the directed
-/// line `p_i → p_j`, i.e. its angle around `p_i` is in (θ_j − π, θ_j): a
-/// cyclic run of the sorted order that ends just before the ray of `p_j`.
-pub(crate) struct CcwRows {
-    pub(crate) ccw: BitMatrix,
-    window: BitMatrix, // one row used as the running window
-    order: Vec<u32>,
-    keys: Vec<u64>,
-    group_end: Vec<usize>,
-    group_start: Vec<usize>,
-}
-
-impl CcwRows {
-    pub(crate) fn new(n: usize) -> Self {
-        Self {
-            ccw: BitMatrix::new(n),
-            window: BitMatrix::new(1),
-            order: Vec::with_capacity(n),
-            keys: Vec::with_capacity(n),
-            group_end: Vec::with_capacity(n),
-            group_start: Vec::with_capacity(n),
-        }
-        .with_window(n)
-    }
-
-    fn with_window(mut self, n: usize) -> Self {
-        self.window = BitMatrix {
-            words: n.div_ceil(64).max(1),
-            data: vec![0; n.div_ceil(64).max(1)],
-        };
-        self
-    }
-
-    /// Bytes of storage.
-    pub(crate) fn bytes(&self) -> usize {
-        self.ccw.bytes() + self.window.bytes()
-    }
-
-    /// Fill `ccw.row(j)` for every `j > i` (rows `j ≤ i` are left as they
-    /// are; so are the words of each row below the word of bit `i + 1`).
-    pub(crate) fn compute(&mut self, points: &[Point], i: usize) {
-        let o = points[i];
-        self.order.clear();
-        for (k, &pk) in points.iter().enumerate().skip(i + 1) {
-            if pk == o {
-                // Coincident with p_i: no direction, never counter-clockwise.
-                self.ccw.row_mut(k).fill(0);
-            } else {
-                self.order.push(k as u32);
-            }
-        }
-        let m = self.order.len();
-        if m == 0 {
-            return;
-        }
-        let trusted = sort_around(points, o, &mut self.order, &mut self.keys);
-        // Ray groups: runs of equal angle (never wrap: the order starts at
-        // angle 0 and nothing precedes it).
-        self.group_start.clear();
-        self.group_end.clear();
-        self.group_start.resize(m, 0);
-        self.group_end.resize(m, m);
-        let ord = &self.order;
-        for t in 1..m {
-            let far = trusted && self.keys[t] >= self.keys[t - 1] + 2;
-            self.group_start[t] = if !far && same_ray(points, o, ord[t - 1], ord[t]) {
-                self.group_start[t - 1]
-            } else {
-                t
-            };
-        }
-        for t in (0..m - 1).rev() {
-            self.group_end[t] = if self.group_start[t + 1] == self.group_start[t] {
-                self.group_end[t + 1]
-            } else {
-                t + 1
-            };
-        }
-        self.window.row_mut(0).fill(0);
-        let (mut b, mut e) = (0usize, 0usize); // window = doubled indices [b, e)
-        let at = |x: usize| ord[x % m] as usize;
-        #[allow(
-            clippy::needless_range_loop,
-            reason = "t indexes the order and both group tables"
-        )]
-        for t in 0..m {
-            let j = ord[t];
-            let pj = points[j as usize];
-            let e_new = self.group_start[t] + m;
-            while e < e_new {
-                self.window.toggle(0, at(e));
-                e += 1;
-            }
-            let b_min = self.group_end[t];
-            while b < b_min.min(e) {
-                self.window.toggle(0, at(b));
-                b += 1;
-            }
-            // Drop the prefix that is not strictly right of p_i → p_j.
-            while b < e && !orient(o, pj, points[at(b)]).is_cw() {
-                self.window.toggle(0, at(b));
-                b += 1;
-            }
-            // Only apexes k > i are ever read: copy from the word of i + 1.
-            let (from, words) = ((i + 1) / 64, self.window.words());
-            let src = &self.window.data[from..words];
-            self.ccw.row_mut(j as usize)[from..].copy_from_slice(src);
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -482,7 +294,7 @@ mod tests {
     }
 
     #[test]
-    fn masks_and_window_agree_with_the_definition() {
+    fn masks_agree_with_the_definition() {
         // Small integer grids: many collinear and coincident points.
         let mut r = rng(7);
         for round in 0..400 {
@@ -504,18 +316,12 @@ mod tests {
                 })
                 .collect();
             let hp = HalfPlanes::new(&pts);
-            let mut rows = CcwRows::new(n);
             for i in 0..n {
-                rows.compute(&pts, i);
                 for j in i + 1..n {
-                    for k in 0..n {
-                        let expect = k > i && orient(pts[i], pts[k], pts[j]).is_ccw();
-                        assert_eq!(rows.ccw.get(j, k), expect, "{pts:?} i={i} j={j} k={k}");
-                    }
                     for k in i + 1..j {
                         let exact = is_valid_triangle(&pts, i, k, j);
                         assert_eq!(hp.is_valid(&pts, i, k, j), exact, "{pts:?} {i} {k} {j}");
-                        let bit = rows.ccw.get(j, k)
+                        let bit = orient(pts[i], pts[k], pts[j]).is_ccw()
                             && !hp.bad_flags[i]
                             && !hp.bad_flags[j]
                             && hp.corners(i, j).word(k / 64) >> (k % 64) & 1 == 1;
@@ -527,63 +333,48 @@ mod tests {
     }
 
     #[test]
-    fn multi_word_rows_agree_with_the_definition() {
+    fn multi_word_masks_and_transpose_agree_with_the_definition() {
         let mut r = rng(99);
-        let n = 150;
-        let pts: Vec<Point> = (0..n)
-            .map(|_| Point::new((r() % 50) as f64, (r() % 50) as f64))
-            .collect();
-        let hp = HalfPlanes::new(&pts);
-        let mut rows = CcwRows::new(n);
-        for i in (0..n).rev() {
-            rows.compute(&pts, i);
-            if ![0, 1, 62, 63, 64, 65, 100, 127, 128, 140].contains(&i) {
-                continue;
+        for n in [150, 200] {
+            let pts: Vec<Point> = (0..n)
+                .map(|_| Point::new((r() % 50) as f64, (r() % 50) as f64))
+                .collect();
+            let hp = HalfPlanes::new(&pts);
+            for v in 0..n {
+                for x in 0..n {
+                    let pn = pts[(v + 1) % n];
+                    let right = pts[v] != pn && orient(pts[v], pn, pts[x]).is_cw();
+                    assert_eq!(hp.right.get(v, x), right, "v={v} x={x}");
+                    assert_eq!(hp.right_t.get(x, v), right, "v={v} x={x}");
+                }
             }
-            for j in i + 2..n {
-                for k in i + 1..j {
-                    let exact = is_valid_triangle(&pts, i, k, j);
-                    let ccw = orient(pts[i], pts[k], pts[j]).is_ccw();
-                    assert_eq!(rows.ccw.get(j, k), ccw, "i={i} j={j} k={k}");
-                    let bit = ccw
-                        && !hp.bad_flags[i]
-                        && !hp.bad_flags[j]
-                        && hp.corners(i, j).word(k / 64) >> (k % 64) & 1 == 1;
-                    assert_eq!(bit, exact, "i={i} j={j} k={k}");
+            for i in [0, 1, 62, 63, 64, 65, 100, 127, 128, 140] {
+                for j in i + 2..n {
+                    for k in i + 1..j {
+                        let exact = is_valid_triangle(&pts, i, k, j);
+                        let bit = orient(pts[i], pts[k], pts[j]).is_ccw()
+                            && !hp.bad_flags[i]
+                            && !hp.bad_flags[j]
+                            && hp.corners(i, j).word(k / 64) >> (k % 64) & 1 == 1;
+                        assert_eq!(bit, exact, "i={i} j={j} k={k}");
+                    }
                 }
             }
         }
     }
 
     #[test]
-    fn angular_sort_is_exact() {
-        let mut r = rng(5);
-        let o = Point::new(0.5, 0.5);
-        for round in 0..200 {
-            let m = 2 + (r() % 300) as usize;
-            let pts: Vec<Point> = (0..m)
-                .map(|_| {
-                    let (x, y) = ((r() % 9) as f64 - 4.0, (r() % 9) as f64 - 4.0);
-                    if round % 2 == 0 {
-                        // On or a few ulps off a few rays through o.
-                        let t = (r() % 7) as f64 + 1.0;
-                        let d = Point::new(x, y + 0.25);
-                        let p = o + d * t;
-                        Point::new(f64::from_bits(p.x.to_bits() + r() % 2), p.y)
-                    } else {
-                        Point::new(x, y)
-                    }
-                })
-                .filter(|&p| p != o)
-                .collect();
-            let mut ks: Vec<u32> = (0..pts.len() as u32).collect();
-            let mut buf = Vec::new();
-            sort_around(&pts, o, &mut ks, &mut buf);
-            for t in 1..ks.len() {
-                assert!(
-                    !angle_less(&pts, o, ks[t], ks[t - 1]),
-                    "round {round} at {t}"
-                );
+    fn block_transpose() {
+        let mut r = rng(3);
+        let mut a = [0u64; 64];
+        for w in &mut a {
+            *w = r();
+        }
+        let mut t = a;
+        transpose64(&mut t);
+        for (x, &row) in t.iter().enumerate() {
+            for (y, &orig) in a.iter().enumerate() {
+                assert_eq!(row >> y & 1, orig >> x & 1);
             }
         }
     }

@@ -15,16 +15,23 @@
 //! (2·area)² / (product of the squared two longest sides), which is monotone
 //! on (0, π/3] and needs no trigonometry.
 //!
+//! The decision table ([`crate::immersion::dp`]) is filled first; the values
+//! are then computed only for the cells it marks feasible, over the apexes
+//! it marks feasible, tile by tile in parallel as the decision is. Skipped
+//! cells are exactly those no valid triangulation of the whole polygon
+//! uses, so the optimum and its tie-breaks are those of the unrestricted DP.
+//!
 //! Complexity: O(n³) objective evaluations in the worst case (candidates
 //! whose sub-polygon values already lose are skipped before the triangle is
-//! measured), plus the O(n² log n) exact predicates of the decision DP.
-//! Memory: four `n × n` `f64` tables (row-major and transposed copies of the
-//! two objective values) and one `n × n` `u32` table of apexes, 36n² bytes:
-//! 36 MB at n = 1000, 144 MB at n = 2000.
+//! tested or measured), plus the decision DP. Memory: four `n × n` `f64`
+//! tables (row-major and transposed copies of the two objective values) and
+//! one `n × n` `u32` table of apexes, 36n² bytes (36 MB at n = 1000, 576 MB
+//! at n = 4000), plus the decision table.
+
+use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
 
 use crate::geom::Point;
-use crate::immersion::dp::for_valid_words;
-use crate::immersion::valid::{BitMatrix, CcwRows, HalfPlanes};
+use crate::immersion::dp::{decide, fill_by_tiles, is_ccw};
 
 const NONE: u32 = u32::MAX;
 
@@ -59,6 +66,28 @@ pub(crate) fn memory_bytes(n: usize) -> usize {
     36 * n * n + crate::immersion::dp_memory_bytes(n)
 }
 
+/// A table of `f64` that the parallel fill writes cell by cell.
+struct Floats(Vec<AtomicU64>);
+
+impl Floats {
+    fn new(len: usize, x: f64) -> Self {
+        Self((0..len).map(|_| AtomicU64::new(x.to_bits())).collect())
+    }
+
+    #[inline]
+    fn get(&self, at: usize) -> f64 {
+        f64::from_bits(self.0[at].load(Relaxed))
+    }
+
+    #[inline]
+    fn set(&self, at: usize, x: f64) {
+        self.0[at].store(x.to_bits(), Relaxed);
+    }
+}
+
+/// Share of the progress bar given to the decision DP.
+const DECIDE_SHARE: f64 = 0.2;
+
 /// The max–min-angle triangulation by valid triangles (module docs), or
 /// `None` when none exists. `n ≥ 3` is assumed.
 pub(crate) fn maxmin(points: &[Point], progress: &mut dyn FnMut(f64)) -> Option<Vec<[u32; 3]>> {
@@ -66,72 +95,66 @@ pub(crate) fn maxmin(points: &[Point], progress: &mut dyn FnMut(f64)) -> Option<
     if n < 3 {
         return None;
     }
-    let planes = HalfPlanes::new(points);
-    let mut ccw = CcwRows::new(n);
-    let mut rows = BitMatrix::new(n);
-    let mut cols = BitMatrix::new(n);
-    let mut val = vec![f64::NEG_INFINITY; n * n]; // val[i n + j]
-    let mut val_t = vec![f64::NEG_INFINITY; n * n]; // val_t[j n + i]
-    let mut sum = vec![0.0f64; n * n];
-    let mut sum_t = vec![0.0f64; n * n];
-    let mut arg = vec![NONE; n * n];
-    let total = (n as f64).powi(3) / 6.0 + 1.0;
-    let mut done = 0.0;
-    for i in (0..n - 1).rev() {
-        rows.set(i, i + 1);
-        cols.set(i + 1, i);
-        val[i * n + i + 1] = f64::INFINITY;
-        val_t[(i + 1) * n + i] = f64::INFINITY;
-        ccw.compute(points, i);
-        for j in i + 2..n {
-            let (mut best_v, mut best_s, mut best_k) = (f64::NEG_INFINITY, f64::NEG_INFINITY, NONE);
-            {
-                let (row_i, col_j) = (rows.row(i), cols.row(j));
-                let (vi, vj) = (&val[i * n..(i + 1) * n], &val_t[j * n..(j + 1) * n]);
-                let (si, sj) = (&sum[i * n..(i + 1) * n], &sum_t[j * n..(j + 1) * n]);
-                for_valid_words(&planes, &ccw.ccw, (row_i, col_j), i, j, |w, bits| {
-                    let mut m = bits;
-                    while m != 0 {
-                        let k = w * 64 + m.trailing_zeros() as usize;
-                        m &= m - 1;
-                        let lo = vi[k].min(vj[k]);
-                        if lo < best_v {
-                            continue;
-                        }
-                        let q = sin2_min_angle(points[i], points[k], points[j]);
-                        let v = lo.min(q);
-                        let s = si[k] + sj[k] + q;
-                        if v > best_v || (v == best_v && s > best_s) {
-                            (best_v, best_s, best_k) = (v, s, k as u32);
-                        }
-                    }
-                    false
-                });
-            }
-            if best_k != NONE {
-                rows.set(i, j);
-                cols.set(j, i);
-                val[i * n + j] = best_v;
-                val_t[j * n + i] = best_v;
-                sum[i * n + j] = best_s;
-                sum_t[j * n + i] = best_s;
-                arg[i * n + j] = best_k;
-            }
-        }
-        let len = (n - i) as f64;
-        done += len * len / 2.0;
-        progress((done / total).min(1.0));
-    }
-    if arg[n - 1] == NONE {
+    let table = decide(points, &mut |f| progress(DECIDE_SHARE * f));
+    if !table.get(0, n - 1) {
+        progress(1.0);
         return None;
     }
+    // Row-major (value, sum) pairs at 2 (i n + j), and the transposed
+    // copy at 2 (j n + i), so both operands of a cell are read in order.
+    let fresh = |len: usize| {
+        let t = Floats::new(2 * len, 0.0);
+        for at in 0..len {
+            t.set(2 * at, f64::NEG_INFINITY);
+        }
+        t
+    };
+    let (rows, cols) = (fresh(n * n), fresh(n * n));
+    let arg: Vec<AtomicU32> = (0..n * n).map(|_| AtomicU32::new(NONE)).collect();
+    for i in 0..n - 1 {
+        rows.set(2 * (i * n + i + 1), f64::INFINITY);
+        cols.set(2 * ((i + 1) * n + i), f64::INFINITY);
+    }
+    let share = |f: f64| DECIDE_SHARE + (1.0 - DECIDE_SHARE) * f;
+    fill_by_tiles(n, &mut |f| progress(share(f)), |i, j| {
+        if !table.get(i, j) {
+            return;
+        }
+        let (mut best_v, mut best_s, mut best_k) = (f64::NEG_INFINITY, f64::NEG_INFINITY, NONE);
+        let (pi, pj) = (points[i], points[j]);
+        let (ri, cj) = (2 * i * n, 2 * j * n);
+        table.for_candidates(points, i, j, |k, ccw| {
+            let lo = rows.get(ri + 2 * k).min(cols.get(cj + 2 * k));
+            if lo < best_v {
+                return false;
+            }
+            let base = rows.get(ri + 2 * k + 1) + cols.get(cj + 2 * k + 1);
+            // A tie on the minimum at best wins on the sum, and q ≤ 1.
+            if lo == best_v && base + 1.0 <= best_s {
+                return false;
+            }
+            let q = sin2_min_angle(pi, points[k], pj);
+            let v = lo.min(q);
+            let s = base + q;
+            if (v > best_v || (v == best_v && s > best_s)) && (ccw || is_ccw(points, i, k, j)) {
+                (best_v, best_s, best_k) = (v, s, k as u32);
+            }
+            false
+        });
+        debug_assert_ne!(best_k, NONE, "a feasible cell without an apex: a bug");
+        rows.set(ri + 2 * j, best_v);
+        rows.set(ri + 2 * j + 1, best_s);
+        cols.set(cj + 2 * i, best_v);
+        cols.set(cj + 2 * i + 1, best_s);
+        arg[i * n + j].store(best_k, Relaxed);
+    });
     let mut out = Vec::with_capacity(n - 2);
     let mut stack = vec![(0usize, n - 1)];
     while let Some((i, j)) = stack.pop() {
         if j < i + 2 {
             continue;
         }
-        let k = arg[i * n + j];
+        let k = arg[i * n + j].load(Relaxed);
         if k == NONE {
             debug_assert!(false, "max-min DP backtrack hit an empty cell: a bug");
             return None;

@@ -403,7 +403,7 @@ fn curl(rng: &mut Rng, n: usize, turn_deg: (f64, f64), width: Width) -> Raw {
 }
 
 /// A star-shaped blob: r(φ) = 1 + Σ a_k cos(kφ + p_k) at jittered angles.
-fn blob(rng: &mut Rng, n: usize) -> Vec<Point> {
+pub(crate) fn blob(rng: &mut Rng, n: usize) -> Vec<Point> {
     let harmonics: Vec<(f64, f64, f64)> = (2..=6)
         .map(|k| {
             let k = k as f64;

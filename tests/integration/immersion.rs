@@ -444,3 +444,29 @@ fn reference_curve_labels_are_reproduced() {
         ]
     );
 }
+
+#[test]
+fn spirals_and_blobs_at_moderate_size_triangulate_to_checked_immersions() {
+    use crate::stress::harness::{Rng as StressRng, blob};
+    let mut r = Rng(2024);
+    let curves = [
+        spiral(&mut r, 1200, 1.6, 0.0),
+        spiral(&mut r, 900, 2.4, 0.002),
+        blob(&mut StressRng::new(5, 1), 1000),
+    ];
+    for pts in &curves {
+        let any = triangulate(pts).expect("self-overlapping");
+        assert_eq!(check(&any.points, &any.triangles), Ok(()));
+        let del = triangulate_with(pts, Quality::Delaunay).expect("same curve");
+        assert_eq!(check(&del.points, &del.triangles), Ok(()));
+    }
+    for pts in [
+        spiral(&mut r, 300, 1.6, 0.001),
+        blob(&mut StressRng::new(6, 1), 250),
+    ] {
+        let opt = triangulate_maxmin(&pts).expect("self-overlapping");
+        assert_eq!(check(&opt.points, &opt.triangles), Ok(()));
+        let del = triangulate_with(&pts, Quality::Delaunay).expect("same curve");
+        assert!(opt.min_angle() >= del.min_angle() - 1e-12);
+    }
+}

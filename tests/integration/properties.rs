@@ -19,7 +19,7 @@ use immerse::Curve;
 use immerse::correspond::{compatible_shift, degree_sequence, shift_triangles};
 use immerse::geom::polygon::{Turning, is_simple, triangle_angles, turning_number};
 use immerse::geom::{Orientation, Point, orient};
-use immerse::immersion::{check, triangulate};
+use immerse::immersion::{check, is_valid_triangle, triangulate};
 use immerse::quality::{Quality, triangulate_with};
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
@@ -141,6 +141,20 @@ fn config(cases: u32) -> ProptestConfig {
     }
 }
 
+/// The plain interval DP, unfiltered and cell by cell, with the literal
+/// validity predicate: is there a triangulation by valid triangles?
+fn plain_dp(points: &[Point]) -> bool {
+    let n = points.len();
+    let mut q = vec![vec![false; n]; n];
+    for i in (0..n - 1).rev() {
+        q[i][i + 1] = true;
+        for j in i + 2..n {
+            q[i][j] = (i + 1..j).any(|k| q[i][k] && q[k][j] && is_valid_triangle(points, i, k, j));
+        }
+    }
+    q[0][n - 1]
+}
+
 fn rotated<T: Copy>(v: &[T], k: usize) -> Vec<T> {
     let n = v.len();
     (0..n).map(|i| v[(i + k) % n]).collect()
@@ -161,6 +175,27 @@ proptest! {
             let imm = imm.unwrap();
             prop_assert_eq!(imm.points.len(), disk.points.len());
             prop_assert_eq!(check(&imm.points, &imm.triangles), Ok(()), "{}", q);
+        }
+    }
+
+    /// The decision (filtered, parallel, bitset DP) agrees with the plain
+    /// DP on random polygons and on glued disks, turned by a rotation so
+    /// the chord filter sees every vertex at every place.
+    #[test]
+    fn the_decision_agrees_with_the_plain_dp(
+        points in polygons(),
+        disk in disks(),
+        k in any::<usize>(),
+    ) {
+        for p in [points, rotated(&disk.points, k % disk.points.len())] {
+            if turning_number(&p) != Turning::Number(1) {
+                continue;
+            }
+            let imm = triangulate(&p);
+            prop_assert_eq!(imm.is_ok(), plain_dp(&p), "{:?}", p);
+            if let Ok(imm) = imm {
+                prop_assert_eq!(check(&imm.points, &imm.triangles), Ok(()));
+            }
         }
     }
 

@@ -17,7 +17,7 @@
     dead_code,
     reason = "the shrinker and the long run's reports are used by examples/stress.rs only"
 )]
-mod harness;
+pub(crate) mod harness;
 
 use harness::{
     DEFAULT_SEED, Generator, Pair, Rng, generate, pair, read_curve, regression_files, run_pair,

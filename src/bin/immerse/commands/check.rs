@@ -32,7 +32,10 @@ pub(crate) fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
     }
     let curve = Curve::from_path(&args.curve)?;
     let crossing = polygon::first_self_intersection(&curve.points);
-    let verdict = immersion::triangulate(&curve.points);
+    let json_on_stdout = args.json.as_deref().is_some_and(immerse_render::is_stdout);
+    let bar = super::LateProgress::new("check", json_on_stdout);
+    let verdict = immersion::triangulate_progress(&curve.points, &mut |f| bar.update(f));
+    bar.finish();
     if let Err(e) = &verdict
         && !e.is_answer()
     {

@@ -56,6 +56,42 @@ pub(crate) fn progress_bar(len: u64, message: &str, quiet: bool) -> ProgressBar 
     bar
 }
 
+/// Progress of one long computation that reports the fraction done: a
+/// [`progress_bar`] that stays hidden for its first second, so quick runs
+/// print nothing, and always when `quiet` or stderr is not a terminal.
+pub(crate) struct LateProgress {
+    bar: ProgressBar,
+    start: std::time::Instant,
+    hidden: bool,
+}
+
+impl LateProgress {
+    /// Delay before the bar appears.
+    const DELAY: std::time::Duration = std::time::Duration::from_secs(1);
+
+    pub(crate) fn new(message: &str, quiet: bool) -> Self {
+        Self {
+            bar: progress_bar(1000, message, true),
+            start: std::time::Instant::now(),
+            hidden: quiet || !std::io::stderr().is_terminal(),
+        }
+    }
+
+    /// Report the fraction done, in [0, 1].
+    pub(crate) fn update(&self, fraction: f64) {
+        if !self.hidden && self.bar.is_hidden() && self.start.elapsed() >= Self::DELAY {
+            self.bar.set_draw_target(ProgressDrawTarget::stderr());
+        }
+        self.bar
+            .set_position((fraction.clamp(0.0, 1.0) * 1000.0) as u64);
+    }
+
+    /// Remove the bar.
+    pub(crate) fn finish(self) {
+        self.bar.finish_and_clear();
+    }
+}
+
 /// A spinner on stderr for work of unknown length, ticking on its own;
 /// hidden like [`progress_bar`].
 pub(crate) fn spinner(message: &str, quiet: bool) -> ProgressBar {

@@ -1,6 +1,6 @@
 //! `immerse triangulate`: the immersion triangulation of one curve.
 
-use super::{plain_points, progress_bar};
+use super::{LateProgress, plain_points};
 use crate::Outcome;
 use crate::args::TriangulateArgs;
 use crate::output;
@@ -40,11 +40,9 @@ pub(crate) fn run(args: &TriangulateArgs) -> anyhow::Result<Outcome> {
     let json_on_stdout = args.json.as_deref().is_some_and(render::is_stdout);
     let curve = Curve::from_path(&args.curve)?;
     let quality = Quality::from(args.quality);
-    let bar = progress_bar(1000, "triangulate", json_on_stdout || curve.len() < 1500);
-    let result = triangulate_with_progress(&curve.points, quality, &mut |f| {
-        bar.set_position((f * 1000.0) as u64);
-    });
-    bar.finish_and_clear();
+    let bar = LateProgress::new("triangulate", json_on_stdout);
+    let result = triangulate_with_progress(&curve.points, quality, &mut |f| bar.update(f));
+    bar.finish();
     let imm = match result {
         Ok(imm) => imm,
         Err(reason) if !reason.is_answer() => {

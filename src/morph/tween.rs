@@ -329,8 +329,17 @@ impl Tween {
         let mut fallbacks = self.report.fallbacks.clone();
         let mut paths = self.report.paths.clone();
         let mut frames = Vec::with_capacity(fractions.len());
-        for &t in fractions {
-            let (frame, fb) = self.frame_with_fallback(t)?;
+        // Frames are independent: computed and checked on every core, then
+        // taken in order.
+        let computed: Vec<Result<(Frame, Option<Fallback>), MorphError>> = {
+            use rayon::prelude::*;
+            fractions
+                .par_iter()
+                .map(|&t| self.frame_with_fallback(t))
+                .collect()
+        };
+        for result in computed {
+            let (frame, fb) = result?;
             if let Some(fb) = fb {
                 fallbacks.push(fb);
                 if let Some(p) = ThirdVertexPath::ALL.into_iter().find(|p| {

@@ -194,7 +194,27 @@ impl Compatible {
             return Err(CompatibleError::Counts(src.len(), dst.len()));
         }
         let tree = DualTree::new(src.len(), triangles)?;
-        let root_t = root_triangle(&tree, src, root);
+        Compatible::on_tree(src, dst, &tree, root, fan_margin)
+    }
+
+    /// [`Compatible::new`] with the dual tree of the triangulation already
+    /// built (the staged route builds it once per leg and shares it).
+    ///
+    /// # Errors
+    ///
+    /// As [`Compatible::new`].
+    pub(crate) fn on_tree(
+        src: &[Point],
+        dst: &[Point],
+        tree: &DualTree,
+        root: RootChoice,
+        fan_margin: f64,
+    ) -> Result<Compatible, CompatibleError> {
+        if src.len() != dst.len() || src.len() != tree.vertex_count() {
+            return Err(CompatibleError::Counts(src.len(), dst.len()));
+        }
+        let triangles = tree.triangles();
+        let root_t = root_triangle(tree, src, root);
         let rooted = tree.rooted(root_t);
         let m = triangles.len();
         let mut local_src = vec![Point::ZERO; m];

@@ -32,7 +32,7 @@ use super::layout::{self, fit_similarity, lerp3};
 use super::staged::gate;
 use crate::geom::Point;
 use crate::geom::polygon::triangle_angles;
-use crate::immersion::check;
+use crate::immersion::check_triangles;
 use crate::tree::DualTree;
 use std::f64::consts::{PI, TAU};
 
@@ -42,15 +42,17 @@ pub const TARGET_MIN_ANGLE: f64 = PI / 180.0;
 /// Margin ε kept below 2π in every fan of the target (radians).
 pub const TARGET_FAN_MARGIN: f64 = 0.05;
 
-/// The target D*: the other curve measured with `tris`, made valid, laid
-/// out and fitted to it. `blocked` triangles take the disk's angles.
+/// The target D*: the other curve measured with the triangulation of
+/// `tree`, made valid, laid out and fitted to it. `blocked` triangles take
+/// the disk's angles.
 pub(crate) fn target_shape(
-    tris: &[[u32; 3]],
+    tree: &DualTree,
     other: &[Point],
     disk: &[Point],
     blocked: &[bool],
 ) -> Option<Vec<Point>> {
     let n = other.len();
+    let tris = tree.triangles();
     let disk_angles: Vec<[f64; 3]> = tris
         .iter()
         .map(|t| {
@@ -77,10 +79,11 @@ pub(crate) fn target_shape(
     let sm = layout::fan_sums(n, &corners, &measured);
     let sd = layout::fan_sums(n, &corners, &disk_angles);
     let mut lambda = layout::fan_blend(&sm, &sd, |_| TAU - TARGET_FAN_MARGIN);
-    let tree = DualTree::new(n, tris).ok()?;
     let rooted = tree.rooted(tree.centre());
     // Rounding in the layout can spoil a nearly degenerate target; blend
-    // further toward the disk until the exact check passes.
+    // further toward the disk until the exact check passes. `tris` is a
+    // triangulation of the n-gon (its dual tree exists), so the
+    // geometric half of the check is the whole check.
     for _ in 0..8 {
         let l = lambda.clamp(0.0, 1.0);
         let ang: Vec<[f64; 3]> = measured
@@ -91,7 +94,7 @@ pub(crate) fn target_shape(
         let laid = lay_out_rooted(&rooted, tris, &ang);
         let fit = fit_similarity(&laid, other);
         let fitted = match_area(laid.iter().map(|&p| fit.apply(p)).collect(), other);
-        if fitted.iter().all(|p| p.is_finite()) && check(&fitted, tris).is_ok() {
+        if fitted.iter().all(|p| p.is_finite()) && check_triangles(&fitted, tris).is_ok() {
             return Some(fitted);
         }
         lambda = 0.5 * (1.0 + lambda);
@@ -123,14 +126,19 @@ struct Candidate {
 
 /// The flips that strictly lower their diagonal's crossings with the goal,
 /// kept up to date flip by flip: a flip changes only the quads of its own
-/// four sides and the new diagonal, so only those are recomputed (O(n) each
-/// for the crossing counts) instead of every diagonal.
+/// four sides and the new diagonal, so only those are recomputed instead of
+/// every diagonal. The current diagonals' crossing counts with the goal are
+/// remembered (a flipped-in diagonal's is its predecessor's less the gain),
+/// so a refresh counts one chord (O(log² n)), the one it would flip to.
 pub(crate) struct Candidates {
     by_diagonal: std::collections::BTreeMap<(u32, u32), Candidate>,
     /// The goal's diagonals, sorted.
     goal: Vec<(u32, u32)>,
     /// Crossing counts against the goal.
     crossings: super::flips::CrossingCounter,
+    /// Crossing counts of the current diagonals not in the goal, as far as
+    /// counted.
+    counted: rustc_hash::FxHashMap<(u32, u32), usize>,
 }
 
 impl Candidates {
@@ -139,6 +147,7 @@ impl Candidates {
             by_diagonal: std::collections::BTreeMap::new(),
             goal: goal.to_vec(),
             crossings: super::flips::CrossingCounter::new(goal),
+            counted: rustc_hash::FxHashMap::default(),
         };
         for d in cur.diagonals() {
             c.refresh_one(cur, d);
@@ -157,7 +166,7 @@ impl Candidates {
             return;
         };
         let new = (quad[1].min(quad[3]), quad[1].max(quad[3]));
-        let gain = self.crossings.count(d) as i64 - self.crossings.count(new) as i64;
+        let gain = self.count(d) as i64 - self.crossings.count(new) as i64;
         if gain > 0 {
             self.by_diagonal.insert(
                 d,
@@ -170,10 +179,21 @@ impl Candidates {
         }
     }
 
+    /// The crossings of the current diagonal `d` (`d.0 < d.1`) with the
+    /// goal.
+    fn count(&mut self, d: (u32, u32)) -> usize {
+        let crossings = &self.crossings;
+        *self.counted.entry(d).or_insert_with(|| crossings.count(d))
+    }
+
     /// Applies the flip of `c` to `cur` and updates the affected entries.
     fn flip(&mut self, cur: &mut FlipTriangulation, c: Candidate) {
         cur.flip(c.from.0, c.from.1);
         let [a, b, cc, d] = c.quad;
+        if let Some(before) = self.counted.remove(&c.from) {
+            let after = before as i64 - c.gain;
+            self.counted.insert((b.min(d), b.max(d)), after as usize);
+        }
         for e in [c.from, (b, d), (a, b), (b, cc), (cc, d), (d, a)] {
             self.refresh_one(cur, e);
         }
@@ -242,11 +262,11 @@ mod tests {
         let disk = super::super::disk_for(&a, area, c);
         // A's triangulation on B: some triangles are inverted there; the
         // target is an immersion anyway.
-        let t = target_shape(&ta, &b, &disk, &[]).unwrap();
-        assert!(check(&t, &ta).is_ok());
+        let t = target_shape(&DualTree::new(a.len(), &ta).unwrap(), &b, &disk, &[]).unwrap();
+        assert!(crate::immersion::check(&t, &ta).is_ok());
         // B's own triangulation (angles above the clamp): B itself.
         assert!(crate::geom::polygon::min_triangle_angle(&b, &tb) > TARGET_MIN_ANGLE);
-        let t = target_shape(&tb, &b, &disk, &[]).unwrap();
+        let t = target_shape(&DualTree::new(b.len(), &tb).unwrap(), &b, &disk, &[]).unwrap();
         let diag = crate::morph::compatible::tests::bbox_diag(&b);
         for (p, q) in t.iter().zip(&b) {
             assert!((*p - *q).length() < 1e-9 * diag);

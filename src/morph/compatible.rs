@@ -42,11 +42,10 @@ pub struct Compatible {
     dst: Vec<Point>,
     triangles: Vec<[u32; 3]>,
     rooted: Rooted,
-    /// Per triangle, the third vertex in base-frame coordinates.
-    local_src: Vec<Point>,
-    local_dst: Vec<Point>,
-    /// Per triangle, its rotate-slide plan.
-    plans: Vec<RotateSlide>,
+    /// The base-frame data of the paths that propagate third vertices
+    /// (`linear`, `rotate-slide`, `hybrid`), made when first asked for: the
+    /// default path and most legs never need them.
+    base_frames: std::sync::OnceLock<BaseFrames>,
     /// Per triangle, angles at (base start, base end, third) in source and
     /// target.
     ang_src: Vec<[f64; 3]>,
@@ -70,6 +69,63 @@ pub struct Compatible {
     turn: f64,
     /// The total area range the straight path keeps to.
     area_range: (f64, f64),
+}
+
+/// Per triangle, the third vertex in base-frame coordinates on the source
+/// and on the target, and its rotate-slide plan.
+#[derive(Clone, Debug)]
+struct BaseFrames {
+    local_src: Vec<Point>,
+    local_dst: Vec<Point>,
+    plans: Vec<RotateSlide>,
+}
+
+impl BaseFrames {
+    fn new(src: &[Point], dst: &[Point], rooted: &Rooted) -> BaseFrames {
+        let m = rooted.third.len();
+        let local = |p: &[Point]| -> Vec<Point> {
+            (0..m)
+                .map(|t| {
+                    let [x, y] = rooted.base[t].map(|v| v as usize);
+                    to_base_frame(p[x], p[y], p[rooted.third[t] as usize])
+                })
+                .collect()
+        };
+        let (local_src, local_dst) = (local(src), local(dst));
+        // Rotate-slide pivots: base ends whose edge to the third vertex is a
+        // child's base.
+        let mut has_child_edge = vec![[false; 2]; m];
+        for u in 0..m {
+            if let Some(p) = rooted.parent[u] {
+                let w = rooted.third[p];
+                let [x, y] = rooted.base[p];
+                let e = rooted.base[u];
+                if e.contains(&w) && e.contains(&x) {
+                    has_child_edge[p][0] = true;
+                }
+                if e.contains(&w) && e.contains(&y) {
+                    has_child_edge[p][1] = true;
+                }
+            }
+        }
+        let plans = (0..m)
+            .map(|t| {
+                let mut pivots = Vec::with_capacity(2);
+                if has_child_edge[t][0] {
+                    pivots.push(Point::ZERO);
+                }
+                if has_child_edge[t][1] {
+                    pivots.push(Point::X);
+                }
+                RotateSlide::plan(local_src[t], local_dst[t], &pivots)
+            })
+            .collect();
+        BaseFrames {
+            local_src,
+            local_dst,
+            plans,
+        }
+    }
 }
 
 /// The straight path's total area range for ends of areas `a0` and `a1`.
@@ -217,15 +273,11 @@ impl Compatible {
         let root_t = root_triangle(tree, src, root);
         let rooted = tree.rooted(root_t);
         let m = triangles.len();
-        let mut local_src = vec![Point::ZERO; m];
-        let mut local_dst = vec![Point::ZERO; m];
         let mut ang_src = vec![[0.0; 3]; m];
         let mut ang_dst = vec![[0.0; 3]; m];
         for t in 0..m {
             let [x, y] = rooted.base[t].map(|v| v as usize);
             let w = rooted.third[t] as usize;
-            local_src[t] = to_base_frame(src[x], src[y], src[w]);
-            local_dst[t] = to_base_frame(dst[x], dst[y], dst[w]);
             ang_src[t] = corner_angles(src, [x, y, w]).ok_or(CompatibleError::NotCcw {
                 triangle: t,
                 which: "source",
@@ -235,34 +287,6 @@ impl Compatible {
                 which: "target",
             })?;
         }
-        // Rotate-slide pivots: base ends whose edge to the third vertex is a
-        // child's base.
-        let mut has_child_edge = vec![[false; 2]; m];
-        for u in 0..m {
-            if let Some(p) = rooted.parent[u] {
-                let w = rooted.third[p];
-                let [x, y] = rooted.base[p];
-                let e = rooted.base[u];
-                if e.contains(&w) && e.contains(&x) {
-                    has_child_edge[p][0] = true;
-                }
-                if e.contains(&w) && e.contains(&y) {
-                    has_child_edge[p][1] = true;
-                }
-            }
-        }
-        let plans = (0..m)
-            .map(|t| {
-                let mut pivots = Vec::with_capacity(2);
-                if has_child_edge[t][0] {
-                    pivots.push(Point::ZERO);
-                }
-                if has_child_edge[t][1] {
-                    pivots.push(Point::X);
-                }
-                RotateSlide::plan(local_src[t], local_dst[t], &pivots)
-            })
-            .collect();
         let rt = triangles[root_t].map(|v| v as usize);
         let root_motion = RootMotion::new(rt.map(|v| src[v]), rt.map(|v| dst[v]));
         let (a_s, c_s) = area_and_centroid(src, triangles);
@@ -284,9 +308,7 @@ impl Compatible {
             dst: dst.to_vec(),
             triangles: triangles.to_vec(),
             rooted,
-            local_src,
-            local_dst,
-            plans,
+            base_frames: std::sync::OnceLock::new(),
             ang_src,
             ang_dst,
             root: root_motion,
@@ -548,10 +570,17 @@ impl Compatible {
         })
     }
 
+    /// The base-frame data, made on first use.
+    fn base_frames(&self) -> &BaseFrames {
+        self.base_frames
+            .get_or_init(|| BaseFrames::new(&self.src, &self.dst, &self.rooted))
+    }
+
     fn third_local(&self, tri: usize, t: f64, path: ThirdVertexPath) -> Point {
+        let b = self.base_frames();
         match path {
-            ThirdVertexPath::RotateSlide => self.plans[tri].at(t),
-            _ => self.local_src[tri].lerp(self.local_dst[tri], t),
+            ThirdVertexPath::RotateSlide => b.plans[tri].at(t),
+            _ => b.local_src[tri].lerp(b.local_dst[tri], t),
         }
     }
 
@@ -589,12 +618,13 @@ impl Compatible {
             self.root.place(self.src[y], t),
             self.root.place(self.src[w], t),
         );
+        let plans = &self.base_frames().plans;
         let ang_b: Vec<[f64; 3]> = (0..m)
             .map(|i| {
                 let c = if i == root {
                     root_local
                 } else {
-                    self.plans[i].at(t)
+                    plans[i].at(t)
                 };
                 base_frame_angles(c).unwrap_or(ang_c[i])
             })

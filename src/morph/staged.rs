@@ -29,7 +29,7 @@
 //! every such step is recorded as a [`Fallback`].
 
 use super::flips::{Flip, FlipTriangulation, flip_sequence};
-use super::target::{Candidates, target_shape};
+use super::target::{Candidates, TargetAngles, target_shape};
 use super::{Compatible, CompatibleError, MorphError, ThirdVertexPath, area_and_centroid};
 use crate::flip::canonical;
 use crate::frames::Fallback;
@@ -365,6 +365,7 @@ impl Staged {
         let mut x = inp.s.to_vec();
         let (area, centroid) = area_and_centroid(inp.s, inp.t_start);
         let reference_disk = disk_for(inp.s, area, centroid);
+        let mut target_angles = TargetAngles::default();
         let mut mode = Mode::Target;
         let mut order = FlipOrder::Gain(Candidates::new(&cur, &goal));
         if inp.intermediate == super::Intermediate::Disk {
@@ -380,7 +381,13 @@ impl Staged {
             // One dual tree per leg, for the target and the leg's plan.
             let tree = DualTree::new(n, cur.triangles()).map_err(CompatibleError::from)?;
             let (end, floor) = match &mode {
-                Mode::Target => match target_shape(&tree, inp.other, &reference_disk, &blocked) {
+                Mode::Target => match target_shape(
+                    &tree,
+                    inp.other,
+                    &reference_disk,
+                    &blocked,
+                    &mut target_angles,
+                ) {
                     Some(t) => (t, inp.floor),
                     None => {
                         st.fallbacks.push(Fallback::new(

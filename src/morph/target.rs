@@ -42,33 +42,64 @@ pub const TARGET_MIN_ANGLE: f64 = PI / 180.0;
 /// Margin ε kept below 2π in every fan of the target (radians).
 pub const TARGET_FAN_MARGIN: f64 = 0.05;
 
+/// The corner angles of each triangle on the disk and on the other curve,
+/// kept from one target to the next: a flip replaces two triangles in
+/// place, so only the triangles that changed are measured again.
+#[derive(Default)]
+pub(crate) struct TargetAngles {
+    tris: Vec<[u32; 3]>,
+    disk: Vec<[f64; 3]>,
+    other: Vec<[f64; 3]>,
+}
+
+impl TargetAngles {
+    /// Brings the angles up to date with `tris`.
+    fn update(&mut self, tris: &[[u32; 3]], disk: &[Point], other: &[Point]) {
+        let measure = |p: &[Point], t: [u32; 3]| {
+            let [a, b, c] = t.map(|v| p[v as usize]);
+            triangle_angles(a, b, c)
+        };
+        if self.tris.len() != tris.len() {
+            *self = TargetAngles::default();
+        }
+        for (i, &t) in tris.iter().enumerate() {
+            if self.tris.get(i) == Some(&t) {
+                continue;
+            }
+            if i >= self.tris.len() {
+                self.tris.push(t);
+                self.disk.push(measure(disk, t));
+                self.other.push(measure(other, t));
+            } else {
+                self.tris[i] = t;
+                self.disk[i] = measure(disk, t);
+                self.other[i] = measure(other, t);
+            }
+        }
+    }
+}
+
 /// The target D*: the other curve measured with the triangulation of
 /// `tree`, made valid, laid out and fitted to it. `blocked` triangles take
-/// the disk's angles.
+/// the disk's angles. `angles` keeps the measurements between calls with
+/// the same disk and other curve.
 pub(crate) fn target_shape(
     tree: &DualTree,
     other: &[Point],
     disk: &[Point],
     blocked: &[bool],
+    angles: &mut TargetAngles,
 ) -> Option<Vec<Point>> {
     let n = other.len();
     let tris = tree.triangles();
-    let disk_angles: Vec<[f64; 3]> = tris
-        .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|v| disk[v as usize]);
-            triangle_angles(a, b, c)
-        })
-        .collect();
-    let measured: Vec<[f64; 3]> = tris
-        .iter()
-        .enumerate()
-        .map(|(i, t)| {
+    angles.update(tris, disk, other);
+    let disk_angles = &angles.disk;
+    let measured: Vec<[f64; 3]> = (0..tris.len())
+        .map(|i| {
             if blocked.get(i).copied().unwrap_or(false) {
                 return disk_angles[i];
             }
-            let [a, b, c] = t.map(|v| other[v as usize]);
-            let m = triangle_angles(a, b, c)
+            let m = angles.other[i]
                 .map(|x| if x.is_finite() { x } else { PI / 3.0 })
                 .map(|x| x.clamp(TARGET_MIN_ANGLE, PI - TARGET_MIN_ANGLE));
             let s = m[0] + m[1] + m[2];
@@ -77,7 +108,7 @@ pub(crate) fn target_shape(
         .collect();
     let corners: Vec<[usize; 3]> = tris.iter().map(|t| t.map(|v| v as usize)).collect();
     let sm = layout::fan_sums(n, &corners, &measured);
-    let sd = layout::fan_sums(n, &corners, &disk_angles);
+    let sd = layout::fan_sums(n, &corners, disk_angles);
     let mut lambda = layout::fan_blend(&sm, &sd, |_| TAU - TARGET_FAN_MARGIN);
     let rooted = tree.rooted(tree.centre());
     // Rounding in the layout can spoil a nearly degenerate target; blend
@@ -88,7 +119,7 @@ pub(crate) fn target_shape(
         let l = lambda.clamp(0.0, 1.0);
         let ang: Vec<[f64; 3]> = measured
             .iter()
-            .zip(&disk_angles)
+            .zip(disk_angles)
             .map(|(m, d)| lerp3(*m, *d, l))
             .collect();
         let laid = lay_out_rooted(&rooted, tris, &ang);
@@ -131,7 +162,9 @@ struct Candidate {
 /// remembered (a flipped-in diagonal's is its predecessor's less the gain),
 /// so a refresh counts one chord (O(log² n)), the one it would flip to.
 pub(crate) struct Candidates {
-    by_diagonal: std::collections::BTreeMap<(u32, u32), Candidate>,
+    /// The candidates by diagonal (hashed: the order they are applied in
+    /// is fixed by sorting, with the diagonal as the last key).
+    by_diagonal: rustc_hash::FxHashMap<(u32, u32), Candidate>,
     /// The goal's diagonals, sorted.
     goal: Vec<(u32, u32)>,
     /// Crossing counts against the goal.
@@ -144,7 +177,7 @@ pub(crate) struct Candidates {
 impl Candidates {
     pub(crate) fn new(cur: &FlipTriangulation, goal: &[(u32, u32)]) -> Candidates {
         let mut c = Candidates {
-            by_diagonal: std::collections::BTreeMap::new(),
+            by_diagonal: rustc_hash::FxHashMap::default(),
             goal: goal.to_vec(),
             crossings: super::flips::CrossingCounter::new(goal),
             counted: rustc_hash::FxHashMap::default(),
@@ -215,7 +248,8 @@ impl Candidates {
     }
 
     /// Applies acceptable flips at shape `p` (largest gain first, then the
-    /// best new minimum angle) until none is left; returns how many. Each
+    /// best new minimum angle, then the smaller diagonal) until none is
+    /// left; returns how many. Each
     /// pass gates every candidate once and applies them in that order,
     /// gating each again just before (an earlier flip of the pass may have
     /// changed its quad); flips made possible by the pass wait for the
@@ -230,7 +264,12 @@ impl Candidates {
             if ready.is_empty() {
                 return applied;
             }
-            ready.sort_by(|(c1, m1), (c2, m2)| c2.gain.cmp(&c1.gain).then(m2.total_cmp(m1)));
+            ready.sort_by(|(c1, m1), (c2, m2)| {
+                c2.gain
+                    .cmp(&c1.gain)
+                    .then(m2.total_cmp(m1))
+                    .then(c1.from.cmp(&c2.from))
+            });
             for (c, _) in ready {
                 // Still a candidate with the same quad, and still acceptable?
                 let current = self.by_diagonal.get(&c.from).copied();
@@ -262,11 +301,26 @@ mod tests {
         let disk = super::super::disk_for(&a, area, c);
         // A's triangulation on B: some triangles are inverted there; the
         // target is an immersion anyway.
-        let t = target_shape(&DualTree::new(a.len(), &ta).unwrap(), &b, &disk, &[]).unwrap();
+        let mut angles = TargetAngles::default();
+        let t = target_shape(
+            &DualTree::new(a.len(), &ta).unwrap(),
+            &b,
+            &disk,
+            &[],
+            &mut angles,
+        )
+        .unwrap();
         assert!(crate::immersion::check(&t, &ta).is_ok());
         // B's own triangulation (angles above the clamp): B itself.
         assert!(crate::geom::polygon::min_triangle_angle(&b, &tb) > TARGET_MIN_ANGLE);
-        let t = target_shape(&DualTree::new(b.len(), &tb).unwrap(), &b, &disk, &[]).unwrap();
+        let t = target_shape(
+            &DualTree::new(b.len(), &tb).unwrap(),
+            &b,
+            &disk,
+            &[],
+            &mut TargetAngles::default(),
+        )
+        .unwrap();
         let diag = crate::morph::compatible::tests::bbox_diag(&b);
         for (p, q) in t.iter().zip(&b) {
             assert!((*p - *q).length() < 1e-9 * diag);

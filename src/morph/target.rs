@@ -172,6 +172,8 @@ pub(crate) struct Candidates {
     /// Crossing counts of the current diagonals not in the goal, as far as
     /// counted.
     counted: rustc_hash::FxHashMap<(u32, u32), usize>,
+    /// The candidates (re)made by the flips since the last pass of a batch.
+    refreshed: Vec<(u32, u32)>,
 }
 
 impl Candidates {
@@ -181,6 +183,7 @@ impl Candidates {
             goal: goal.to_vec(),
             crossings: super::flips::CrossingCounter::new(goal),
             counted: rustc_hash::FxHashMap::default(),
+            refreshed: Vec::new(),
         };
         for d in cur.diagonals() {
             c.refresh_one(cur, d);
@@ -201,6 +204,7 @@ impl Candidates {
         let new = (quad[1].min(quad[3]), quad[1].max(quad[3]));
         let gain = self.count(d) as i64 - self.crossings.count(new) as i64;
         if gain > 0 {
+            self.refreshed.push(d);
             self.by_diagonal.insert(
                 d,
                 Candidate {
@@ -249,18 +253,32 @@ impl Candidates {
 
     /// Applies acceptable flips at shape `p` (largest gain first, then the
     /// best new minimum angle, then the smaller diagonal) until none is
-    /// left; returns how many. Each
-    /// pass gates every candidate once and applies them in that order,
-    /// gating each again just before (an earlier flip of the pass may have
-    /// changed its quad); flips made possible by the pass wait for the
-    /// next pass.
+    /// left; returns how many. Each pass gates the candidates and applies
+    /// those that pass in that order, gating each again just before (an
+    /// earlier flip of the pass may have changed its quad); flips made
+    /// possible by the pass wait for the next pass. The first pass gates
+    /// every candidate; a later one only those a flip of the pass before
+    /// refreshed, as every other one failed the gate then and, with the
+    /// same quad in the same shape, fails it again.
     pub(crate) fn batch(&mut self, cur: &mut FlipTriangulation, p: &[Point], floor: f64) -> usize {
         let mut applied = 0;
+        let mut first = true;
         loop {
-            let mut ready: Vec<(Candidate, f64)> = self
-                .iter()
-                .filter_map(|c| gate(p, c.quad, floor).map(|m| (*c, m)))
-                .collect();
+            let gated = |c: &Candidate| gate(p, c.quad, floor).map(|m| (*c, m));
+            let mut ready: Vec<(Candidate, f64)> = if first {
+                self.iter().filter_map(gated).collect()
+            } else {
+                let mut refreshed = std::mem::take(&mut self.refreshed);
+                refreshed.sort_unstable();
+                refreshed.dedup();
+                refreshed
+                    .iter()
+                    .filter_map(|d| self.by_diagonal.get(d))
+                    .filter_map(gated)
+                    .collect()
+            };
+            first = false;
+            self.refreshed.clear();
             if ready.is_empty() {
                 return applied;
             }

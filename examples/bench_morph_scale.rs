@@ -1,8 +1,10 @@
 //! How `immerse morph` scales with the vertex count: the CLI with its
 //! default options and 60 frames (written as JSON), on two pairs, at
 //! n = 400, 1000, 2000 and 5000 (or `--sizes`). Each row gives the median
-//! wall time of `--runs` runs (default 3) and the peak resident memory of
-//! the process, and, on the same pair in the same run, flubber's time and
+//! wall time of `--runs` runs (default 3), the median CPU time (user +
+//! system, all threads: on a machine shared with other jobs the wall time
+//! varies far more) and the peak resident memory of the process, and, on
+//! the same pair in the same run, flubber's time and
 //! memory when `--flubber DIR` names a folder where flubber is installed
 //! (`scripts/bench-table.sh --morph-scale` installs it as
 //! `scripts/peer-compare.sh` does). A last line fits the growth exponent
@@ -19,9 +21,10 @@
 //! && target/release/examples/bench_morph_scale [--sizes 400,1000]
 //! [--runs K] [--immerse PATH] [--baseline PATH] [--flubber DIR]`.
 //! `--baseline` times a second immerse binary on the same curves in the
-//! same run (before/after tables). Peak memory is read from
-//! `/proc/PID/status` (Linux) while the process runs; elsewhere it is
-//! left blank.
+//! same run (before/after tables). Peak memory and CPU time are read
+//! from `/proc/PID/status` and `/proc/PID/stat` (Linux) while the process
+//! runs (the last reading before it exits); elsewhere they are left
+//! blank.
 
 use immerse::Point;
 use std::f64::consts::TAU;
@@ -88,18 +91,39 @@ fn peak_memory(pid: u32) -> Option<u64> {
     Some(kb * 1024)
 }
 
-/// Runs `cmd` to completion: wall time and peak memory (polled).
-fn run(cmd: &mut Command) -> Result<(f64, Option<u64>), String> {
+/// CPU time (user + system, seconds) of a running process, if readable.
+fn cpu_time(pid: u32) -> Option<f64> {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
+    // The fields after the command name (in brackets, may hold spaces).
+    let rest = &stat[stat.rfind(')')? + 2..];
+    let fields: Vec<&str> = rest.split_whitespace().collect();
+    let ticks = fields.get(11)?.parse::<f64>().ok()? + fields.get(12)?.parse::<f64>().ok()?;
+    Some(ticks / 100.0)
+}
+
+/// One finished run: wall time, CPU time and peak memory (the last two
+/// polled).
+struct Run {
+    wall: f64,
+    cpu: Option<f64>,
+    peak: Option<u64>,
+}
+
+/// Runs `cmd` to completion.
+fn run(cmd: &mut Command) -> Result<Run, String> {
     let start = Instant::now();
     let mut child = cmd
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
         .map_err(|e| format!("{cmd:?}: {e}"))?;
-    let mut peak = None;
+    let (mut peak, mut cpu) = (None, None);
     let status = loop {
         if let Some(m) = peak_memory(child.id()) {
             peak = Some(m);
+        }
+        if let Some(c) = cpu_time(child.id()) {
+            cpu = Some(c);
         }
         match child.try_wait().map_err(|e| e.to_string())? {
             Some(status) => break status,
@@ -115,7 +139,11 @@ fn run(cmd: &mut Command) -> Result<(f64, Option<u64>), String> {
         }
         return Err(format!("{cmd:?} failed: {err}"));
     }
-    Ok((secs, peak))
+    Ok(Run {
+        wall: secs,
+        cpu,
+        peak,
+    })
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -123,16 +151,26 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-/// Median time and largest peak memory of `runs` runs of `cmd`.
-fn measure(runs: usize, mut cmd: impl FnMut() -> Command) -> Result<(f64, Option<u64>), String> {
-    let mut times = Vec::new();
+/// Median wall time, median CPU time and largest peak memory of `runs`
+/// runs of `cmd`.
+fn measure(runs: usize, mut cmd: impl FnMut() -> Command) -> Result<Run, String> {
+    let (mut walls, mut cpus) = (Vec::new(), Vec::new());
     let mut peak: Option<u64> = None;
     for _ in 0..runs {
-        let (t, m) = run(&mut cmd())?;
-        times.push(t);
-        peak = peak.max(m);
+        let r = run(&mut cmd())?;
+        walls.push(r.wall);
+        cpus.extend(r.cpu);
+        peak = peak.max(r.peak);
     }
-    Ok((median(times), peak))
+    Ok(Run {
+        wall: median(walls),
+        cpu: (!cpus.is_empty()).then(|| median(cpus)),
+        peak,
+    })
+}
+
+fn secs(t: Option<f64>) -> String {
+    t.map_or(String::new(), |t| format!("{t:.2} s"))
 }
 
 /// Least-squares slope of log t against log n.
@@ -200,12 +238,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }),
     ];
     println!(
-        "`immerse morph A B --json OUT` with default options, 60 frames; median of {runs} runs, peak resident memory; flubber 0.4.2 `interpolate` + 60 evaluations in node (fastest of 3 after a warm-up, in-process), its process's peak memory\n"
+        "`immerse morph A B --json OUT` with default options, 60 frames; median wall and CPU time (user + system, all threads) of {runs} runs, peak resident memory; flubber 0.4.2 `interpolate` + 60 evaluations in node (fastest of 3 after a warm-up, in-process), its process's peak memory\n"
     );
-    let mut header = "| pair | n | immerse | memory |".to_string();
-    let mut rule = "|---|---|---|---|".to_string();
+    let mut header = "| pair | n | immerse | CPU | memory |".to_string();
+    let mut rule = "|---|---|---|---|---|".to_string();
     if baseline.is_some() {
-        header += " before | memory before | speed-up |";
+        header += " before | CPU before | memory before |";
         rule += "---|---|---|";
     }
     header += " target | flubber | flubber memory |";
@@ -214,6 +252,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut fits: Vec<String> = Vec::new();
     for (name, make) in pairs {
         let mut ours = Vec::new();
+        let mut ours_cpu = Vec::new();
         let mut theirs = Vec::new();
         for &n in &sizes {
             let (a, b) = make(n);
@@ -230,12 +269,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     .arg(&out);
                 c
             };
-            let (t, m) = measure(runs, || cmd(&immerse))?;
-            ours.push((n, t));
-            let mut row = format!("| {name} | {n} | {t:.3} s | {} |", mb(m));
+            let r = measure(runs, || cmd(&immerse))?;
+            ours.push((n, r.wall));
+            ours_cpu.extend(r.cpu.map(|c| (n, c)));
+            let mut row = format!(
+                "| {name} | {n} | {:.3} s | {} | {} |",
+                r.wall,
+                secs(r.cpu),
+                mb(r.peak)
+            );
             if let Some(base) = &baseline {
-                let (tb, mb_) = measure(runs, || cmd(base))?;
-                row += &format!(" {tb:.3} s | {} | {:.1}× |", mb(mb_), tb / t);
+                let b = measure(runs, || cmd(base))?;
+                row += &format!(" {:.3} s | {} | {} |", b.wall, secs(b.cpu), mb(b.peak));
             }
             row += &format!(
                 " {} |",
@@ -252,7 +297,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                         "to": {"points": pts(&b)},
                     });
                     std::fs::write(pdir.join("pair-00.json"), pair.to_string())?;
-                    let (_, fm) = run(Command::new("node")
+                    let fm = run(Command::new("node")
                         .arg(&script)
                         .arg(&pdir)
                         .arg(prefix)
@@ -262,7 +307,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     )?)?;
                     let ms = res["ms"].as_f64().unwrap_or(f64::NAN);
                     theirs.push((n, ms / 1e3));
-                    row += &format!(" {:.3} s | {} |", ms / 1e3, mb(fm));
+                    row += &format!(" {:.3} s | {} |", ms / 1e3, mb(fm.peak));
                 }
                 None => row += " not run | |",
             }
@@ -276,7 +321,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 .collect();
             exponent(&big).map_or("n/a".to_string(), |e| format!("{e:.2}"))
         };
-        let mut line = format!("{name}: immerse {}", fit(&ours));
+        let mut line = format!(
+            "{name}: immerse {} (CPU time {})",
+            fit(&ours),
+            fit(&ours_cpu)
+        );
         if !theirs.is_empty() {
             line += &format!(", flubber {}", fit(&theirs));
         }

@@ -5,8 +5,9 @@
 # Usage: scripts/peer-compare.sh [MAX_SEGMENT_LENGTH]
 #
 # 1. Creates a temporary folder (mktemp -d) and installs the pinned
-#    flubber version into it with npm (no global install; nothing from
-#    node_modules is committed). The folder is removed on exit.
+#    flubber version into it with scripts/peer/install-flubber.sh (npm, no
+#    global install; nothing from node_modules is committed). The folder
+#    is removed on exit.
 # 2. `cargo run --release --example peer_check -- export DIR` writes the
 #    pairs (cleaned, oriented points as immerse reads them from curves/,
 #    SVGs included) as DIR/pair-NN.json.
@@ -24,7 +25,6 @@
 # See docs/peer-comparison.md for the table this produced.
 set -euo pipefail
 
-FLUBBER_VERSION=0.4.2
 SEGMENT=${1:-false}
 
 for tool in node npm cargo; do
@@ -38,14 +38,8 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/immerse-peer.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 
-echo "peer-compare: installing flubber@$FLUBBER_VERSION into $tmp/npm" >&2
-mkdir -p "$tmp/npm" "$tmp/pairs"
-(
-  cd "$tmp/npm"
-  echo '{"name": "immerse-peer-compare", "private": true}' > package.json
-  npm install --silent --no-audit --no-fund --no-save "flubber@$FLUBBER_VERSION" >&2
-) || { echo "peer-compare: npm install flubber@$FLUBBER_VERSION failed" >&2; exit 1; }
-installed=$(node -p "require('$tmp/npm/node_modules/flubber/package.json').version")
+mkdir -p "$tmp/pairs"
+installed=$("$root/scripts/peer/install-flubber.sh" "$tmp/npm")
 echo "peer-compare: flubber $installed, node $(node --version)" >&2
 
 cd "$root"

@@ -1,6 +1,6 @@
 // flubber's in-betweens for the pairs exported by `peer_check export DIR`.
 //
-// Usage: node scripts/peer/flubber_frames.mjs DIR FLUBBER_PREFIX [MAX_SEGMENT_LENGTH]
+// Usage: node scripts/peer/flubber_frames.mjs DIR FLUBBER_PREFIX [MAX_SEGMENT_LENGTH [FRAMES]]
 //
 // DIR holds pair-NN.json ({"name", "from": {"points"}, "to": {"points"}});
 // FLUBBER_PREFIX is the folder where `npm install flubber` was run.
@@ -11,24 +11,25 @@
 // untimed warm-up run (so the JIT has compiled flubber).
 // MAX_SEGMENT_LENGTH is flubber's maxSegmentLength option: "false" (the
 // default here: no extra bisection, so flubber's rings have the same
-// vertex count as immerse's) or a number in curve units.
+// vertex count as immerse's) or a number in curve units. FRAMES is the
+// number of in-betweens (default 41).
 
 import { createRequire } from "node:module";
 import { readdirSync, readFileSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
 import { performance } from "node:perf_hooks";
 
-const FRAMES = 41;
 const REPEATS = 3;
 
-const [dir, prefix, segArg = "false"] = process.argv.slice(2);
+const [dir, prefix, segArg = "false", framesArg = "41"] = process.argv.slice(2);
 if (!dir || !prefix) {
-  console.error("usage: node flubber_frames.mjs DIR FLUBBER_PREFIX [MAX_SEGMENT_LENGTH]");
+  console.error("usage: node flubber_frames.mjs DIR FLUBBER_PREFIX [MAX_SEGMENT_LENGTH [FRAMES]]");
   process.exit(2);
 }
 const require = createRequire(join(prefix, "package.json"));
 const flubber = require("flubber");
 const maxSegmentLength = segArg === "false" ? false : Number(segArg);
+const FRAMES = Number(framesArg);
 
 const ts = Array.from({ length: FRAMES }, (_, i) => i / (FRAMES - 1));
 

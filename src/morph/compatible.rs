@@ -42,11 +42,10 @@ pub struct Compatible {
     dst: Vec<Point>,
     triangles: Vec<[u32; 3]>,
     rooted: Rooted,
-    /// Per triangle, the third vertex in base-frame coordinates.
-    local_src: Vec<Point>,
-    local_dst: Vec<Point>,
-    /// Per triangle, its rotate-slide plan.
-    plans: Vec<RotateSlide>,
+    /// The base-frame data of the paths that propagate third vertices
+    /// (`linear`, `rotate-slide`, `hybrid`), made when first asked for: the
+    /// default path and most legs never need them.
+    base_frames: std::sync::OnceLock<BaseFrames>,
     /// Per triangle, angles at (base start, base end, third) in source and
     /// target.
     ang_src: Vec<[f64; 3]>,
@@ -70,6 +69,63 @@ pub struct Compatible {
     turn: f64,
     /// The total area range the straight path keeps to.
     area_range: (f64, f64),
+}
+
+/// Per triangle, the third vertex in base-frame coordinates on the source
+/// and on the target, and its rotate-slide plan.
+#[derive(Clone, Debug)]
+struct BaseFrames {
+    local_src: Vec<Point>,
+    local_dst: Vec<Point>,
+    plans: Vec<RotateSlide>,
+}
+
+impl BaseFrames {
+    fn new(src: &[Point], dst: &[Point], rooted: &Rooted) -> BaseFrames {
+        let m = rooted.third.len();
+        let local = |p: &[Point]| -> Vec<Point> {
+            (0..m)
+                .map(|t| {
+                    let [x, y] = rooted.base[t].map(|v| v as usize);
+                    to_base_frame(p[x], p[y], p[rooted.third[t] as usize])
+                })
+                .collect()
+        };
+        let (local_src, local_dst) = (local(src), local(dst));
+        // Rotate-slide pivots: base ends whose edge to the third vertex is a
+        // child's base.
+        let mut has_child_edge = vec![[false; 2]; m];
+        for u in 0..m {
+            if let Some(p) = rooted.parent[u] {
+                let w = rooted.third[p];
+                let [x, y] = rooted.base[p];
+                let e = rooted.base[u];
+                if e.contains(&w) && e.contains(&x) {
+                    has_child_edge[p][0] = true;
+                }
+                if e.contains(&w) && e.contains(&y) {
+                    has_child_edge[p][1] = true;
+                }
+            }
+        }
+        let plans = (0..m)
+            .map(|t| {
+                let mut pivots = Vec::with_capacity(2);
+                if has_child_edge[t][0] {
+                    pivots.push(Point::ZERO);
+                }
+                if has_child_edge[t][1] {
+                    pivots.push(Point::X);
+                }
+                RotateSlide::plan(local_src[t], local_dst[t], &pivots)
+            })
+            .collect();
+        BaseFrames {
+            local_src,
+            local_dst,
+            plans,
+        }
+    }
 }
 
 /// The straight path's total area range for ends of areas `a0` and `a1`.
@@ -194,18 +250,34 @@ impl Compatible {
             return Err(CompatibleError::Counts(src.len(), dst.len()));
         }
         let tree = DualTree::new(src.len(), triangles)?;
-        let root_t = root_triangle(&tree, src, root);
+        Compatible::on_tree(src, dst, &tree, root, fan_margin)
+    }
+
+    /// [`Compatible::new`] with the dual tree of the triangulation already
+    /// built (the staged route builds it once per leg and shares it).
+    ///
+    /// # Errors
+    ///
+    /// As [`Compatible::new`].
+    pub(crate) fn on_tree(
+        src: &[Point],
+        dst: &[Point],
+        tree: &DualTree,
+        root: RootChoice,
+        fan_margin: f64,
+    ) -> Result<Compatible, CompatibleError> {
+        if src.len() != dst.len() || src.len() != tree.vertex_count() {
+            return Err(CompatibleError::Counts(src.len(), dst.len()));
+        }
+        let triangles = tree.triangles();
+        let root_t = root_triangle(tree, src, root);
         let rooted = tree.rooted(root_t);
         let m = triangles.len();
-        let mut local_src = vec![Point::ZERO; m];
-        let mut local_dst = vec![Point::ZERO; m];
         let mut ang_src = vec![[0.0; 3]; m];
         let mut ang_dst = vec![[0.0; 3]; m];
         for t in 0..m {
             let [x, y] = rooted.base[t].map(|v| v as usize);
             let w = rooted.third[t] as usize;
-            local_src[t] = to_base_frame(src[x], src[y], src[w]);
-            local_dst[t] = to_base_frame(dst[x], dst[y], dst[w]);
             ang_src[t] = corner_angles(src, [x, y, w]).ok_or(CompatibleError::NotCcw {
                 triangle: t,
                 which: "source",
@@ -215,34 +287,6 @@ impl Compatible {
                 which: "target",
             })?;
         }
-        // Rotate-slide pivots: base ends whose edge to the third vertex is a
-        // child's base.
-        let mut has_child_edge = vec![[false; 2]; m];
-        for u in 0..m {
-            if let Some(p) = rooted.parent[u] {
-                let w = rooted.third[p];
-                let [x, y] = rooted.base[p];
-                let e = rooted.base[u];
-                if e.contains(&w) && e.contains(&x) {
-                    has_child_edge[p][0] = true;
-                }
-                if e.contains(&w) && e.contains(&y) {
-                    has_child_edge[p][1] = true;
-                }
-            }
-        }
-        let plans = (0..m)
-            .map(|t| {
-                let mut pivots = Vec::with_capacity(2);
-                if has_child_edge[t][0] {
-                    pivots.push(Point::ZERO);
-                }
-                if has_child_edge[t][1] {
-                    pivots.push(Point::X);
-                }
-                RotateSlide::plan(local_src[t], local_dst[t], &pivots)
-            })
-            .collect();
         let rt = triangles[root_t].map(|v| v as usize);
         let root_motion = RootMotion::new(rt.map(|v| src[v]), rt.map(|v| dst[v]));
         let (a_s, c_s) = area_and_centroid(src, triangles);
@@ -264,9 +308,7 @@ impl Compatible {
             dst: dst.to_vec(),
             triangles: triangles.to_vec(),
             rooted,
-            local_src,
-            local_dst,
-            plans,
+            base_frames: std::sync::OnceLock::new(),
             ang_src,
             ang_dst,
             root: root_motion,
@@ -412,8 +454,24 @@ impl Compatible {
         let rule: Vec<[f64; 3]> = (0..m)
             .map(|i| lerp3(self.ang_src[i], self.ang_dst[i], t))
             .collect();
-        // Per triangle: the angles, and whether they are the guide's own.
+        // The guide's angles of a triangle: two by atan2, the third as the
+        // rest of π.
+        let measure = |i: usize| -> [f64; 3] {
+            let [x, y, w] = self.corners[i];
+            let (px, py, pw) = (guide[x], guide[y], guide[w]);
+            let (e, f) = (py - px, pw - px);
+            let cross = e.perp_dot(f).abs();
+            let ax = cross.atan2(e.dot(f));
+            let ay = cross.atan2((px - py).dot(pw - py));
+            [ax, ay, (std::f64::consts::PI - ax - ay).max(0.0)]
+        };
+        // Per triangle: the angles, whether they are the guide's own, and
+        // whether they are only estimated: a triangle that is clearly kept
+        // needs its angles only for fan sums, and only where the estimate
+        // cannot tell that the fan stays below its cap are they measured
+        // (below), so the result is what measuring every one gives.
         let mut kept = vec![false; m];
+        let mut rough = vec![false; m];
         let mut ang: Vec<[f64; 3]> = (0..m)
             .map(|i| {
                 let [x, y, w] = self.corners[i];
@@ -423,13 +481,20 @@ impl Compatible {
                 if px == py || px == pw || py == pw || floor <= 0.0 {
                     return c;
                 }
-                // Two angles by atan2, the third as the rest of π.
-                let (e, f) = (py - px, pw - px);
-                let cross = e.perp_dot(f).abs();
-                let ax = cross.atan2(e.dot(f));
-                let ay = cross.atan2((px - py).dot(pw - py));
-                let measured = [ax, ay, (std::f64::consts::PI - ax - ay).max(0.0)];
-                let sign = f64::from(crate::geom::orient(px, py, pw).signum());
+                let orientation = crate::geom::orient(px, py, pw);
+                if orientation.is_ccw() {
+                    let (e, f) = (py - px, pw - px);
+                    let cross = e.perp_dot(f).abs();
+                    if let Some(est) = estimate_angles(cross, e.dot(f), (px - py).dot(pw - py)) {
+                        if est[0].min(est[1]).min(est[2]) - ESTIMATE_SLACK >= floor {
+                            kept[i] = true;
+                            rough[i] = true;
+                            return est;
+                        }
+                    }
+                }
+                let measured = measure(i);
+                let sign = f64::from(orientation.signum());
                 let sigma = sign * measured[0].min(measured[1]).min(measured[2]);
                 let mu = ((floor - sigma) / (2.0 * floor)).clamp(0.0, 1.0);
                 if mu <= 0.0 {
@@ -445,8 +510,35 @@ impl Compatible {
         let n = self.src.len();
         let s_c = layout::fan_sums(n, &self.corners, &rule);
         let cap = |v: usize| TAU - self.fan_margin.min((TAU - s_c[v]) / 2.0);
+        // Fan sums, exact (as if every triangle were measured) at every
+        // vertex whose fan could reach its cap; elsewhere they are below it.
+        let settle = |ang: &mut [[f64; 3]], rough: &mut [bool]| -> Vec<f64> {
+            let s = layout::fan_sums(n, &self.corners, ang);
+            let mut slack = vec![0.0; n];
+            for (i, c) in self.corners.iter().enumerate() {
+                if rough[i] {
+                    c.iter().for_each(|&v| slack[v] += ESTIMATE_SLACK);
+                }
+            }
+            let unsure: Vec<bool> = (0..n)
+                .map(|v| slack[v] > 0.0 && (s[v] + slack[v] >= cap(v) || s[v].is_nan()))
+                .collect();
+            let mut changed = false;
+            for (i, c) in self.corners.iter().enumerate() {
+                if rough[i] && c.iter().any(|&v| unsure[v]) {
+                    ang[i] = measure(i);
+                    rough[i] = false;
+                    changed = true;
+                }
+            }
+            if changed {
+                layout::fan_sums(n, &self.corners, ang)
+            } else {
+                s
+            }
+        };
         // Local: each over-full vertex blends its own fan.
-        let s = layout::fan_sums(n, &self.corners, &ang);
+        let s = settle(&mut ang, &mut rough);
         let local: Vec<f64> = (0..n)
             .map(|v| {
                 let c = cap(v);
@@ -468,10 +560,13 @@ impl Compatible {
             }
         }
         // Global: whatever the local step could not settle.
-        let s = layout::fan_sums(n, &self.corners, &ang);
+        let s = settle(&mut ang, &mut rough);
         let lambda = layout::fan_blend(&s, &s_c, cap);
         if lambda > 0.0 {
-            for (a, c) in ang.iter_mut().zip(&rule) {
+            for (i, (a, c)) in ang.iter_mut().zip(&rule).enumerate() {
+                if rough[i] {
+                    *a = measure(i);
+                }
                 *a = lerp3(*a, *c, lambda);
             }
             kept.iter_mut().for_each(|k| *k = false);
@@ -528,10 +623,17 @@ impl Compatible {
         })
     }
 
+    /// The base-frame data, made on first use.
+    fn base_frames(&self) -> &BaseFrames {
+        self.base_frames
+            .get_or_init(|| BaseFrames::new(&self.src, &self.dst, &self.rooted))
+    }
+
     fn third_local(&self, tri: usize, t: f64, path: ThirdVertexPath) -> Point {
+        let b = self.base_frames();
         match path {
-            ThirdVertexPath::RotateSlide => self.plans[tri].at(t),
-            _ => self.local_src[tri].lerp(self.local_dst[tri], t),
+            ThirdVertexPath::RotateSlide => b.plans[tri].at(t),
+            _ => b.local_src[tri].lerp(b.local_dst[tri], t),
         }
     }
 
@@ -569,12 +671,13 @@ impl Compatible {
             self.root.place(self.src[y], t),
             self.root.place(self.src[w], t),
         );
+        let plans = &self.base_frames().plans;
         let ang_b: Vec<[f64; 3]> = (0..m)
             .map(|i| {
                 let c = if i == root {
                     root_local
                 } else {
-                    self.plans[i].at(t)
+                    plans[i].at(t)
                 };
                 base_frame_angles(c).unwrap_or(ang_c[i])
             })
@@ -587,6 +690,44 @@ impl Compatible {
         });
         (0..m).map(|i| lerp3(ang_b[i], ang_c[i], lambda)).collect()
     }
+}
+
+/// Largest error of [`estimate_atan`] (radians), with room to spare: the
+/// polynomial of Abramowitz & Stegun 4.4.49 is within 1e-5.
+const ATAN_ERROR: f64 = 2e-5;
+
+/// Largest error of one corner of [`estimate_angles`]: the third angle, π
+/// less the other two, carries both their errors.
+const ESTIMATE_SLACK: f64 = 3.0 * ATAN_ERROR;
+
+/// arctan(z) for z ∈ [0, 1] within [`ATAN_ERROR`] (Abramowitz & Stegun
+/// 4.4.49).
+fn estimate_atan(z: f64) -> f64 {
+    let z2 = z * z;
+    z * (0.999_866 + z2 * (-0.330_299_5 + z2 * (0.180_141 + z2 * (-0.085_133 + z2 * 0.020_835_1))))
+}
+
+/// The angle atan2(`y`, `x`) for `y` ≥ 0, within [`ATAN_ERROR`]; `None`
+/// where the inputs are not finite or both zero.
+fn estimate_angle(y: f64, x: f64) -> Option<f64> {
+    let ax = x.abs();
+    if !(y.is_finite() && x.is_finite()) || (y == 0.0 && ax == 0.0) {
+        return None;
+    }
+    let a = if ax >= y {
+        estimate_atan(y / ax)
+    } else {
+        std::f64::consts::FRAC_PI_2 - estimate_atan(ax / y)
+    };
+    Some(if x < 0.0 { std::f64::consts::PI - a } else { a })
+}
+
+/// Estimates of a triangle's angles from `cross` = |e × f| and the dot
+/// products at its first two corners, each within [`ESTIMATE_SLACK`].
+fn estimate_angles(cross: f64, dot_x: f64, dot_y: f64) -> Option<[f64; 3]> {
+    let ax = estimate_angle(cross, dot_x)?;
+    let ay = estimate_angle(cross, dot_y)?;
+    Some([ax, ay, (std::f64::consts::PI - ax - ay).max(0.0)])
 }
 
 /// Angles at `x`, `y`, `w` of a triangle that the exact predicate says is
@@ -663,6 +804,22 @@ pub(crate) mod tests {
     use super::*;
     use crate::frames::Frame;
     use std::f64::consts::PI;
+
+    #[test]
+    fn angle_estimates_stay_within_their_bound() {
+        let mut worst: f64 = 0.0;
+        for i in 0..=200_000 {
+            let phi = std::f64::consts::PI * f64::from(i) / 200_000.0;
+            for r in [1e-9, 1.0, 3e7] {
+                let (y, x) = ((phi.sin() * r).abs(), phi.cos() * r);
+                let est = estimate_angle(y, x).unwrap();
+                worst = worst.max((est - y.atan2(x)).abs());
+            }
+        }
+        assert!(worst <= 0.6 * ATAN_ERROR, "{worst}");
+        assert_eq!(estimate_angle(0.0, 0.0), None);
+        assert_eq!(estimate_angle(f64::NAN, 1.0), None);
+    }
 
     pub(crate) struct Rng(pub(crate) u64);
     impl Rng {

@@ -452,6 +452,9 @@ impl<'a> Triangulations<'a> {
     }
 }
 
+/// Equalises counts (falling back from resampling to insertion when
+/// resampling would make a curve not self-overlapping) and triangulates
+/// (the two curves side by side).
 pub(crate) fn prepare(
     tri: &Triangulations<'_>,
     counts: Counts,
@@ -461,7 +464,7 @@ pub(crate) fn prepare(
     let mut fallbacks = Vec::new();
     if counts == Counts::Insert && correspondence == Correspondence::Outline {
         let (pa, pb, k) = crate::correspond::align(a, b);
-        match (tri.of(&pa), tri.of(&pb)) {
+        match rayon::join(|| tri.of(&pa), || tri.of(&pb)) {
             (Ok(ta), Ok(tb)) => {
                 return Ok(Prepared {
                     a: pa,
@@ -488,8 +491,11 @@ pub(crate) fn prepare(
     }
     if counts == Counts::Resample {
         let (ra, rb) = equal_counts(a, b, Counts::Resample);
-        let tried = [(&ra, Side::Source), (&rb, Side::Target)]
-            .map(|(p, side)| tri.of(p).map_err(|reason| (side, reason)));
+        let (ta, tb) = rayon::join(|| tri.of(&ra), || tri.of(&rb));
+        let tried = [
+            ta.map_err(|reason| (Side::Source, reason)),
+            tb.map_err(|reason| (Side::Target, reason)),
+        ];
         match tried {
             [Ok(ta), Ok(tb)] => {
                 return Ok(Prepared {
@@ -515,7 +521,7 @@ pub(crate) fn prepare(
         }
     }
     let (ia, ib) = equal_counts(a, b, Counts::Insert);
-    let (ta, tb) = match (tri.of(&ia), tri.of(&ib)) {
+    let (ta, tb) = match rayon::join(|| tri.of(&ia), || tri.of(&ib)) {
         (Ok(ta), Ok(tb)) => (ta, tb),
         (Err(reason), _) | (_, Err(reason)) => {
             // Is it the user's curve, or the insertion?

@@ -115,66 +115,60 @@ pub fn flip_sequence(n: usize, from: &[[u32; 3]], to: &[[u32; 3]]) -> Vec<Flip> 
 
 /// For every cyclic shift k, the number of crossings between `t1`'s
 /// diagonals and `t2`'s relabelled by k (vertex `v` of t2 becomes
-/// `v − k`). O(n² log n) in all, with a Fenwick tree per shift.
+/// `v − k`). O(n²) in all, with no sorting: for each first endpoint c the
+/// number f(d) of `t1`'s diagonals that the chord (c, d) crosses follows
+/// from f(d − 1) by looking only at the diagonals at d − 1 and d (a chord
+/// crosses (c, d) when one endpoint is strictly inside (c, d) and the
+/// other outside [c, d]):
+/// f(d + 1) = f(d) + #{(d, w): w < c or w > d + 1} − #{(v, d + 1): c < v < d},
+/// and each diagonal of `t2`, under each shift, is one chord (c, d). The
+/// first endpoints are shared out between the cores.
 pub fn crossings_per_shift(n: usize, t1: &[[u32; 3]], t2: &[[u32; 3]]) -> Vec<usize> {
+    use rayon::prelude::*;
     let d1 = FlipTriangulation::new(n, t1).diagonals();
     let d2 = FlipTriangulation::new(n, t2).diagonals();
-    (0..n)
-        .map(|k| {
-            let shifted: Vec<(u32, u32)> = d2
-                .iter()
-                .map(|&(a, b)| {
-                    let m = n as u32;
-                    let k = k as u32;
-                    key((a + m - k) % m, (b + m - k) % m)
-                })
-                .collect();
-            count_crossings_fast(n, &d1, &shifted)
-        })
-        .collect()
-}
-
-/// Crossings between two sets of chords of an n-gon in O((|a| + |b|) log n):
-/// pairs with a.0 < b.0 < a.1 < b.1 plus pairs with b.0 < a.0 < b.1 < a.1.
-fn count_crossings_fast(n: usize, a: &[(u32, u32)], b: &[(u32, u32)]) -> usize {
-    one_way(n, a, b) + one_way(n, b, a)
-}
-
-/// Pairs (p in `a`, q in `b`) with p.0 < q.0 < p.1 < q.1.
-fn one_way(n: usize, a: &[(u32, u32)], b: &[(u32, u32)]) -> usize {
-    let mut a_sorted: Vec<(u32, u32)> = a.to_vec();
-    a_sorted.sort_unstable();
-    let mut b_sorted: Vec<(u32, u32)> = b.to_vec();
-    b_sorted.sort_unstable();
-    let mut fen = vec![0usize; n + 1];
-    let add = |fen: &mut Vec<usize>, i: usize| {
-        let mut i = i + 1;
-        while i <= n {
-            fen[i] += 1;
-            i += i & i.wrapping_neg();
-        }
-    };
-    let prefix = |fen: &Vec<usize>, i: usize| {
-        // Count of inserted keys < i.
-        let mut s = 0;
-        let mut i = i;
-        while i > 0 {
-            s += fen[i];
-            i -= i & i.wrapping_neg();
-        }
-        s
-    };
-    let mut total = 0;
-    let mut ia = 0;
-    for &(c, d) in &b_sorted {
-        while ia < a_sorted.len() && a_sorted[ia].0 < c {
-            add(&mut fen, a_sorted[ia].1 as usize);
-            ia += 1;
-        }
-        // a.1 strictly between c and d.
-        total += prefix(&fen, d as usize) - prefix(&fen, c as usize + 1);
+    let mut at: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for &(a, b) in &d1 {
+        at[a as usize].push(b as usize);
+        at[b as usize].push(a as usize);
     }
-    total
+    (0..n)
+        .into_par_iter()
+        .fold(
+            || (vec![0usize; n], vec![0i64; n]),
+            |(mut per_shift, mut f), c| {
+                if c + 2 >= n {
+                    return (per_shift, f);
+                }
+                f[c + 1] = 0;
+                for d in c + 1..n - 1 {
+                    let gained = at[d].iter().filter(|&&w| w < c || w > d + 1).count();
+                    let lost = at[d + 1].iter().filter(|&&v| c < v && v < d).count();
+                    f[d + 1] = f[d] + gained as i64 - lost as i64;
+                }
+                for &(a, b) in &d2 {
+                    for (e, o) in [(a as usize, b as usize), (b as usize, a as usize)] {
+                        // The shift that takes e to c, and where it takes o.
+                        let k = (e + n - c) % n;
+                        let d = (o + n - k) % n;
+                        if d > c {
+                            per_shift[k] += f[d] as usize;
+                        }
+                    }
+                }
+                (per_shift, f)
+            },
+        )
+        .map(|(per_shift, _)| per_shift)
+        .reduce(
+            || vec![0usize; n],
+            |mut a, b| {
+                for (x, y) in a.iter_mut().zip(b) {
+                    *x += y;
+                }
+                a
+            },
+        )
 }
 
 #[cfg(test)]

@@ -29,14 +29,14 @@
 //! every such step is recorded as a [`Fallback`].
 
 use super::flips::{Flip, FlipTriangulation, flip_sequence};
-use super::target::{Candidates, target_shape};
+use super::target::{Candidates, TargetAngles, target_shape};
 use super::{Compatible, CompatibleError, MorphError, ThirdVertexPath, area_and_centroid};
 use crate::flip::canonical;
 use crate::frames::Fallback;
 use crate::geom::Point;
 use crate::geom::polygon::{min_angle_sine, min_triangle_angle as min_angle, signed_area};
 use crate::immersion::{check, check_triangles, is_valid_triangle};
-use crate::tree::{RootChoice, disk_positions};
+use crate::tree::{DualTree, RootChoice, disk_positions};
 
 /// Step of the walk along one leg, in the leg's own parameter.
 pub const LEG_STEP: f64 = 1.0 / 32.0;
@@ -77,6 +77,35 @@ impl Leg {
             mean_travel: 0.0,
             least_turning: 0.0,
             end_turning: 0.0,
+        }
+    }
+
+    /// Whether the leg keeps the overlaps of its ends: its least total
+    /// absolute turning is at least 0.9 of the smaller end's (§7b's
+    /// unwind).
+    fn keeps_overlaps(&self) -> bool {
+        self.least_turning >= 0.9 * self.end_turning
+    }
+
+    /// Whether this finished last leg is better than `other`: less
+    /// travel wins, unless it unwinds overlaps the other keeps.
+    fn beats(&self, other: &Leg) -> bool {
+        match (self.keeps_overlaps(), other.keeps_overlaps()) {
+            (true, false) => true,
+            (false, true) => false,
+            _ => self.mean_travel < other.mean_travel,
+        }
+    }
+
+    /// Whether this partly sampled last leg can no longer beat the
+    /// finished `other` however it goes on: its travel only grows and its
+    /// least turning only falls.
+    fn cannot_beat(&self, other: &Leg) -> bool {
+        let travels_more = self.mean_travel >= other.mean_travel;
+        if other.keeps_overlaps() {
+            travels_more || !self.keeps_overlaps()
+        } else {
+            travels_more && !self.keeps_overlaps()
         }
     }
 
@@ -266,17 +295,17 @@ pub(crate) struct SideInput<'a> {
 }
 
 impl SideInput<'_> {
-    /// A leg's plan from `x` to `end` under `tris`, keeping the whole
-    /// morph's area range (straight path).
+    /// A leg's plan from `x` to `end` under the triangulation of `tree`,
+    /// keeping the whole morph's area range (straight path).
     fn plan(
         &self,
         x: &[Point],
         end: &[Point],
-        tris: &[[u32; 3]],
+        tree: &DualTree,
     ) -> Result<Compatible, CompatibleError> {
         let a0 = area_and_centroid(self.s, self.t_start).0;
         let a1 = area_and_centroid(self.other, self.t_other).0;
-        Ok(Compatible::new(x, end, tris, self.root, self.margin)?.with_area_range(a0, a1))
+        Ok(Compatible::on_tree(x, end, tree, self.root, self.margin)?.with_area_range(a0, a1))
     }
 }
 
@@ -303,8 +332,8 @@ enum Mode {
 
 /// How a walk along one leg ended.
 enum Walk {
-    /// The leg, and the flips applied at its end.
-    Done(Box<Leg>, usize),
+    /// The leg, the flips applied at its end, and the shape there.
+    Done(Box<Leg>, usize, Vec<Point>),
     /// No guaranteed path could be set up or checked toward this end.
     Failed(String),
 }
@@ -336,6 +365,7 @@ impl Staged {
         let mut x = inp.s.to_vec();
         let (area, centroid) = area_and_centroid(inp.s, inp.t_start);
         let reference_disk = disk_for(inp.s, area, centroid);
+        let mut target_angles = TargetAngles::default();
         let mut mode = Mode::Target;
         let mut order = FlipOrder::Gain(Candidates::new(&cur, &goal));
         if inp.intermediate == super::Intermediate::Disk {
@@ -348,27 +378,35 @@ impl Staged {
             st.flips += order.batch(&mut cur, &x, inp.floor, false);
         }
         while !order.is_done() {
+            // One dual tree per leg, for the target and the leg's plan.
+            let tree = DualTree::new(n, cur.triangles()).map_err(CompatibleError::from)?;
             let (end, floor) = match &mode {
-                Mode::Target => {
-                    match target_shape(cur.triangles(), inp.other, &reference_disk, &blocked) {
-                        Some(t) => (t, inp.floor),
-                        None => {
-                            st.fallbacks.push(Fallback::new(
-                                "finished through the disk",
-                                "the target-shaped intermediate could not be laid out as an immersion",
-                            ));
-                            (mode, order) = Self::to_disk(&x, &cur, goal_tris);
-                            st.used_disk = true;
-                            continue;
-                        }
+                Mode::Target => match target_shape(
+                    &tree,
+                    inp.other,
+                    &reference_disk,
+                    &blocked,
+                    &mut target_angles,
+                ) {
+                    Some(t) => (t, inp.floor),
+                    None => {
+                        st.fallbacks.push(Fallback::new(
+                            "finished through the disk",
+                            "the target-shaped intermediate could not be laid out as an immersion",
+                        ));
+                        (mode, order) = Self::to_disk(&x, &cur, goal_tris);
+                        st.used_disk = true;
+                        continue;
                     }
-                }
+                },
                 Mode::Disk { disk, floor } => (disk.clone(), *floor),
             };
             let at_disk = matches!(mode, Mode::Disk { .. });
-            let walked = walk(inp, &x, &end, &mut cur, &mut order, floor, at_disk, &mut st)?;
-            let (leg, applied) = match walked {
-                Walk::Done(leg, applied) => (*leg, applied),
+            let walked = walk(
+                inp, &x, &end, &tree, &mut cur, &mut order, floor, at_disk, &mut st,
+            )?;
+            let (leg, applied, end_shape) = match walked {
+                Walk::Done(leg, applied, end_shape) => (*leg, applied, end_shape),
                 Walk::Failed(why) if !at_disk => {
                     st.fallbacks
                         .push(Fallback::new("finished through the disk", &why));
@@ -387,7 +425,7 @@ impl Staged {
             if at_disk {
                 remaining *= 1.0 - leg.s_end();
             }
-            x = leg.plan.positions(leg.s_end(), leg.path);
+            x = end_shape;
             st.flips += applied;
             if leg.s_end() > 0.0 {
                 st.legs.push(leg);
@@ -454,10 +492,10 @@ impl Staged {
     }
 }
 
-/// Walks one leg from `x` toward `end` under `cur`, trying the guaranteed
-/// paths in turn until every sample passes the exact check; applies the
-/// flips at the first sample where some pass the gate (all remaining ones
-/// are left for the caller at the disk).
+/// Walks one leg from `x` toward `end` under `cur` (whose dual tree is
+/// `tree`), trying the guaranteed paths in turn until every sample passes
+/// the exact check; applies the flips at the first sample where some pass
+/// the gate (all remaining ones are left for the caller at the disk).
 #[allow(
     clippy::too_many_arguments,
     reason = "the state of the route at the start of a leg"
@@ -466,6 +504,7 @@ fn walk(
     inp: &SideInput<'_>,
     x: &[Point],
     end: &[Point],
+    tree: &DualTree,
     cur: &mut FlipTriangulation,
     order: &mut FlipOrder,
     floor: f64,
@@ -474,7 +513,7 @@ fn walk(
 ) -> Result<Walk, MorphError> {
     let mut why = String::new();
     for (attempt, path) in recovery_paths(inp.leg_path).into_iter().enumerate() {
-        let plan = match inp.plan(x, end, cur.triangles()) {
+        let plan = match inp.plan(x, end, tree) {
             // Toward a target-shaped intermediate, head for the other curve
             // itself (its projection is the intermediate where they differ).
             Ok(plan) if !at_disk => plan.with_guide(inp.other),
@@ -510,13 +549,13 @@ fn walk(
                 0
             };
             if applied > 0 || s >= 1.0 {
-                break Ok(applied);
+                break Ok((applied, p));
             }
             prev = p;
             k += 1;
         };
         match outcome {
-            Ok(applied) => {
+            Ok((applied, end_shape)) => {
                 st.repairs += repairs;
                 if attempt > 0 {
                     st.fallbacks.push(Fallback::new(
@@ -524,7 +563,7 @@ fn walk(
                         &why,
                     ));
                 }
-                return Ok(Walk::Done(Box::new(leg), applied));
+                return Ok(Walk::Done(Box::new(leg), applied, end_shape));
             }
             Err(w) => why = w,
         }
@@ -541,34 +580,28 @@ fn last_leg(
     tris: &[[u32; 3]],
     st: &mut Staged,
 ) -> Result<Leg, MorphError> {
-    let plan = inp.plan(x, inp.other, tris)?;
+    let tree = DualTree::new(x.len(), tris).map_err(CompatibleError::from)?;
+    let plan = inp.plan(x, inp.other, &tree)?;
     let mut why = String::new();
     // The straight path competes with the hybrid one on the last leg: a
     // winding or unwinding that straight lines cut across is often
     // shorter along the hybrid path. The one whose vertices travel less
-    // is kept.
+    // is kept; the rival is given up as soon as it cannot win.
     let mut candidates = recovery_paths(inp.final_path);
     let compete = inp.final_path == ThirdVertexPath::Straight;
     let mut best: Option<(Leg, usize)> = None;
     for (attempt, path) in candidates.drain(..).enumerate() {
-        match sample_leg(plan.clone(), path, x, tris, inp.max_step) {
-            Ok((leg, repairs)) => {
+        let rival = best.as_ref().map(|(b, _)| b);
+        match sample_leg(plan.clone(), path, x, tris, inp.max_step, rival) {
+            Ok(None) => break,
+            Ok(Some((leg, repairs))) => {
                 if attempt > 0 && best.is_none() {
                     st.fallbacks.push(Fallback::new(
                         &format!("used the {path} path for the last leg"),
                         &why,
                     ));
                 }
-                // Less travel wins, unless it unwinds overlaps the other
-                // keeps (§7b's unwind below 0.9 against at least 0.9).
-                let kept = |l: &Leg| l.least_turning >= 0.9 * l.end_turning;
-                let better = best
-                    .as_ref()
-                    .is_none_or(|(b, _)| match (kept(&leg), kept(b)) {
-                        (true, false) => true,
-                        (false, true) => false,
-                        _ => leg.mean_travel < b.mean_travel,
-                    });
+                let better = best.as_ref().is_none_or(|(b, _)| leg.beats(b));
                 if better {
                     best = Some((leg, repairs));
                 }
@@ -593,14 +626,17 @@ fn last_leg(
     }
 }
 
-/// Samples the whole of a leg with `path`, checking every sample exactly.
+/// Samples the whole of a leg with `path`, checking every sample exactly;
+/// `None` as soon as it cannot beat `rival` any more (its travel only
+/// grows and its least turning only falls).
 fn sample_leg(
     plan: Compatible,
     path: ThirdVertexPath,
     x: &[Point],
     tris: &[[u32; 3]],
     max_step: f64,
-) -> Result<(Leg, usize), String> {
+    rival: Option<&Leg>,
+) -> Result<Option<(Leg, usize)>, String> {
     let steps = (1.0 / LEG_STEP).round() as usize;
     let mut leg = Leg::start(plan, path);
     let mut prev = x.to_vec();
@@ -614,8 +650,11 @@ fn sample_leg(
         repairs += r;
         prev = record(&mut leg, tris, max_step, &prev, s, p, &mut repairs)?;
         leg.least_turning = leg.least_turning.min(turning(&prev));
+        if rival.is_some_and(|b| leg.cannot_beat(b)) {
+            return Ok(None);
+        }
     }
-    Ok((leg, repairs))
+    Ok(Some((leg, repairs)))
 }
 
 /// Finest refinement of a leg's samples, in its own parameter.

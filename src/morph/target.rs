@@ -32,7 +32,7 @@ use super::layout::{self, fit_similarity, lerp3};
 use super::staged::gate;
 use crate::geom::Point;
 use crate::geom::polygon::triangle_angles;
-use crate::immersion::check;
+use crate::immersion::check_triangles;
 use crate::tree::DualTree;
 use std::f64::consts::{PI, TAU};
 
@@ -42,31 +42,64 @@ pub const TARGET_MIN_ANGLE: f64 = PI / 180.0;
 /// Margin ε kept below 2π in every fan of the target (radians).
 pub const TARGET_FAN_MARGIN: f64 = 0.05;
 
-/// The target D*: the other curve measured with `tris`, made valid, laid
-/// out and fitted to it. `blocked` triangles take the disk's angles.
+/// The corner angles of each triangle on the disk and on the other curve,
+/// kept from one target to the next: a flip replaces two triangles in
+/// place, so only the triangles that changed are measured again.
+#[derive(Default)]
+pub(crate) struct TargetAngles {
+    tris: Vec<[u32; 3]>,
+    disk: Vec<[f64; 3]>,
+    other: Vec<[f64; 3]>,
+}
+
+impl TargetAngles {
+    /// Brings the angles up to date with `tris`.
+    fn update(&mut self, tris: &[[u32; 3]], disk: &[Point], other: &[Point]) {
+        let measure = |p: &[Point], t: [u32; 3]| {
+            let [a, b, c] = t.map(|v| p[v as usize]);
+            triangle_angles(a, b, c)
+        };
+        if self.tris.len() != tris.len() {
+            *self = TargetAngles::default();
+        }
+        for (i, &t) in tris.iter().enumerate() {
+            if self.tris.get(i) == Some(&t) {
+                continue;
+            }
+            if i >= self.tris.len() {
+                self.tris.push(t);
+                self.disk.push(measure(disk, t));
+                self.other.push(measure(other, t));
+            } else {
+                self.tris[i] = t;
+                self.disk[i] = measure(disk, t);
+                self.other[i] = measure(other, t);
+            }
+        }
+    }
+}
+
+/// The target D*: the other curve measured with the triangulation of
+/// `tree`, made valid, laid out and fitted to it. `blocked` triangles take
+/// the disk's angles. `angles` keeps the measurements between calls with
+/// the same disk and other curve.
 pub(crate) fn target_shape(
-    tris: &[[u32; 3]],
+    tree: &DualTree,
     other: &[Point],
     disk: &[Point],
     blocked: &[bool],
+    angles: &mut TargetAngles,
 ) -> Option<Vec<Point>> {
     let n = other.len();
-    let disk_angles: Vec<[f64; 3]> = tris
-        .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|v| disk[v as usize]);
-            triangle_angles(a, b, c)
-        })
-        .collect();
-    let measured: Vec<[f64; 3]> = tris
-        .iter()
-        .enumerate()
-        .map(|(i, t)| {
+    let tris = tree.triangles();
+    angles.update(tris, disk, other);
+    let disk_angles = &angles.disk;
+    let measured: Vec<[f64; 3]> = (0..tris.len())
+        .map(|i| {
             if blocked.get(i).copied().unwrap_or(false) {
                 return disk_angles[i];
             }
-            let [a, b, c] = t.map(|v| other[v as usize]);
-            let m = triangle_angles(a, b, c)
+            let m = angles.other[i]
                 .map(|x| if x.is_finite() { x } else { PI / 3.0 })
                 .map(|x| x.clamp(TARGET_MIN_ANGLE, PI - TARGET_MIN_ANGLE));
             let s = m[0] + m[1] + m[2];
@@ -75,23 +108,24 @@ pub(crate) fn target_shape(
         .collect();
     let corners: Vec<[usize; 3]> = tris.iter().map(|t| t.map(|v| v as usize)).collect();
     let sm = layout::fan_sums(n, &corners, &measured);
-    let sd = layout::fan_sums(n, &corners, &disk_angles);
+    let sd = layout::fan_sums(n, &corners, disk_angles);
     let mut lambda = layout::fan_blend(&sm, &sd, |_| TAU - TARGET_FAN_MARGIN);
-    let tree = DualTree::new(n, tris).ok()?;
     let rooted = tree.rooted(tree.centre());
     // Rounding in the layout can spoil a nearly degenerate target; blend
-    // further toward the disk until the exact check passes.
+    // further toward the disk until the exact check passes. `tris` is a
+    // triangulation of the n-gon (its dual tree exists), so the
+    // geometric half of the check is the whole check.
     for _ in 0..8 {
         let l = lambda.clamp(0.0, 1.0);
         let ang: Vec<[f64; 3]> = measured
             .iter()
-            .zip(&disk_angles)
+            .zip(disk_angles)
             .map(|(m, d)| lerp3(*m, *d, l))
             .collect();
         let laid = lay_out_rooted(&rooted, tris, &ang);
         let fit = fit_similarity(&laid, other);
         let fitted = match_area(laid.iter().map(|&p| fit.apply(p)).collect(), other);
-        if fitted.iter().all(|p| p.is_finite()) && check(&fitted, tris).is_ok() {
+        if fitted.iter().all(|p| p.is_finite()) && check_triangles(&fitted, tris).is_ok() {
             return Some(fitted);
         }
         lambda = 0.5 * (1.0 + lambda);
@@ -123,22 +157,33 @@ struct Candidate {
 
 /// The flips that strictly lower their diagonal's crossings with the goal,
 /// kept up to date flip by flip: a flip changes only the quads of its own
-/// four sides and the new diagonal, so only those are recomputed (O(n) each
-/// for the crossing counts) instead of every diagonal.
+/// four sides and the new diagonal, so only those are recomputed instead of
+/// every diagonal. The current diagonals' crossing counts with the goal are
+/// remembered (a flipped-in diagonal's is its predecessor's less the gain),
+/// so a refresh counts one chord (O(log² n)), the one it would flip to.
 pub(crate) struct Candidates {
-    by_diagonal: std::collections::BTreeMap<(u32, u32), Candidate>,
+    /// The candidates by diagonal (hashed: the order they are applied in
+    /// is fixed by sorting, with the diagonal as the last key).
+    by_diagonal: rustc_hash::FxHashMap<(u32, u32), Candidate>,
     /// The goal's diagonals, sorted.
     goal: Vec<(u32, u32)>,
     /// Crossing counts against the goal.
     crossings: super::flips::CrossingCounter,
+    /// Crossing counts of the current diagonals not in the goal, as far as
+    /// counted.
+    counted: rustc_hash::FxHashMap<(u32, u32), usize>,
+    /// The candidates (re)made by the flips since the last pass of a batch.
+    refreshed: Vec<(u32, u32)>,
 }
 
 impl Candidates {
     pub(crate) fn new(cur: &FlipTriangulation, goal: &[(u32, u32)]) -> Candidates {
         let mut c = Candidates {
-            by_diagonal: std::collections::BTreeMap::new(),
+            by_diagonal: rustc_hash::FxHashMap::default(),
             goal: goal.to_vec(),
             crossings: super::flips::CrossingCounter::new(goal),
+            counted: rustc_hash::FxHashMap::default(),
+            refreshed: Vec::new(),
         };
         for d in cur.diagonals() {
             c.refresh_one(cur, d);
@@ -157,8 +202,9 @@ impl Candidates {
             return;
         };
         let new = (quad[1].min(quad[3]), quad[1].max(quad[3]));
-        let gain = self.crossings.count(d) as i64 - self.crossings.count(new) as i64;
+        let gain = self.count(d) as i64 - self.crossings.count(new) as i64;
         if gain > 0 {
+            self.refreshed.push(d);
             self.by_diagonal.insert(
                 d,
                 Candidate {
@@ -170,10 +216,21 @@ impl Candidates {
         }
     }
 
+    /// The crossings of the current diagonal `d` (`d.0 < d.1`) with the
+    /// goal.
+    fn count(&mut self, d: (u32, u32)) -> usize {
+        let crossings = &self.crossings;
+        *self.counted.entry(d).or_insert_with(|| crossings.count(d))
+    }
+
     /// Applies the flip of `c` to `cur` and updates the affected entries.
     fn flip(&mut self, cur: &mut FlipTriangulation, c: Candidate) {
         cur.flip(c.from.0, c.from.1);
         let [a, b, cc, d] = c.quad;
+        if let Some(before) = self.counted.remove(&c.from) {
+            let after = before as i64 - c.gain;
+            self.counted.insert((b.min(d), b.max(d)), after as usize);
+        }
         for e in [c.from, (b, d), (a, b), (b, cc), (cc, d), (d, a)] {
             self.refresh_one(cur, e);
         }
@@ -195,22 +252,42 @@ impl Candidates {
     }
 
     /// Applies acceptable flips at shape `p` (largest gain first, then the
-    /// best new minimum angle) until none is left; returns how many. Each
-    /// pass gates every candidate once and applies them in that order,
-    /// gating each again just before (an earlier flip of the pass may have
-    /// changed its quad); flips made possible by the pass wait for the
-    /// next pass.
+    /// best new minimum angle, then the smaller diagonal) until none is
+    /// left; returns how many. Each pass gates the candidates and applies
+    /// those that pass in that order, gating each again just before (an
+    /// earlier flip of the pass may have changed its quad); flips made
+    /// possible by the pass wait for the next pass. The first pass gates
+    /// every candidate; a later one only those a flip of the pass before
+    /// refreshed, as every other one failed the gate then and, with the
+    /// same quad in the same shape, fails it again.
     pub(crate) fn batch(&mut self, cur: &mut FlipTriangulation, p: &[Point], floor: f64) -> usize {
         let mut applied = 0;
+        let mut first = true;
         loop {
-            let mut ready: Vec<(Candidate, f64)> = self
-                .iter()
-                .filter_map(|c| gate(p, c.quad, floor).map(|m| (*c, m)))
-                .collect();
+            let gated = |c: &Candidate| gate(p, c.quad, floor).map(|m| (*c, m));
+            let mut ready: Vec<(Candidate, f64)> = if first {
+                self.iter().filter_map(gated).collect()
+            } else {
+                let mut refreshed = std::mem::take(&mut self.refreshed);
+                refreshed.sort_unstable();
+                refreshed.dedup();
+                refreshed
+                    .iter()
+                    .filter_map(|d| self.by_diagonal.get(d))
+                    .filter_map(gated)
+                    .collect()
+            };
+            first = false;
+            self.refreshed.clear();
             if ready.is_empty() {
                 return applied;
             }
-            ready.sort_by(|(c1, m1), (c2, m2)| c2.gain.cmp(&c1.gain).then(m2.total_cmp(m1)));
+            ready.sort_by(|(c1, m1), (c2, m2)| {
+                c2.gain
+                    .cmp(&c1.gain)
+                    .then(m2.total_cmp(m1))
+                    .then(c1.from.cmp(&c2.from))
+            });
             for (c, _) in ready {
                 // Still a candidate with the same quad, and still acceptable?
                 let current = self.by_diagonal.get(&c.from).copied();
@@ -242,11 +319,26 @@ mod tests {
         let disk = super::super::disk_for(&a, area, c);
         // A's triangulation on B: some triangles are inverted there; the
         // target is an immersion anyway.
-        let t = target_shape(&ta, &b, &disk, &[]).unwrap();
-        assert!(check(&t, &ta).is_ok());
+        let mut angles = TargetAngles::default();
+        let t = target_shape(
+            &DualTree::new(a.len(), &ta).unwrap(),
+            &b,
+            &disk,
+            &[],
+            &mut angles,
+        )
+        .unwrap();
+        assert!(crate::immersion::check(&t, &ta).is_ok());
         // B's own triangulation (angles above the clamp): B itself.
         assert!(crate::geom::polygon::min_triangle_angle(&b, &tb) > TARGET_MIN_ANGLE);
-        let t = target_shape(&tb, &b, &disk, &[]).unwrap();
+        let t = target_shape(
+            &DualTree::new(b.len(), &tb).unwrap(),
+            &b,
+            &disk,
+            &[],
+            &mut TargetAngles::default(),
+        )
+        .unwrap();
         let diag = crate::morph::compatible::tests::bbox_diag(&b);
         for (p, q) in t.iter().zip(&b) {
             assert!((*p - *q).length() < 1e-9 * diag);

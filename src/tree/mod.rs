@@ -17,7 +17,8 @@ pub use spine::Spine;
 
 use crate::geom::Point;
 use petgraph::graph::{NodeIndex, UnGraph};
-use std::collections::{HashMap, VecDeque};
+use rustc_hash::FxHashMap;
+use std::collections::VecDeque;
 
 /// Why a triangle list does not form the dual tree of a polygon
 /// triangulation.
@@ -94,7 +95,8 @@ impl DualTree {
         for t in 0..triangles.len() {
             graph.add_node(t as u32);
         }
-        let mut owner: HashMap<(u32, u32), usize> = HashMap::with_capacity(3 * n);
+        let mut owner: FxHashMap<(u32, u32), usize> =
+            FxHashMap::with_capacity_and_hasher(3 * n, Default::default());
         let mut boundary_seen = vec![false; n];
         for (t, tri) in triangles.iter().enumerate() {
             for k in 0..3 {
@@ -156,18 +158,20 @@ impl DualTree {
 
     /// Neighbouring triangles of `t` with the shared diagonal.
     pub fn neighbours(&self, t: usize) -> Vec<(usize, [u32; 2])> {
-        self.graph
-            .edges(NodeIndex::new(t))
-            .map(|e| {
-                use petgraph::visit::EdgeRef;
-                let other = if e.source().index() == t {
-                    e.target().index()
-                } else {
-                    e.source().index()
-                };
-                (other, *e.weight())
-            })
-            .collect()
+        self.neighbour_iter(t).collect()
+    }
+
+    /// [`DualTree::neighbours`] without collecting them (the traversals).
+    fn neighbour_iter(&self, t: usize) -> impl Iterator<Item = (usize, [u32; 2])> + '_ {
+        self.graph.edges(NodeIndex::new(t)).map(move |e| {
+            use petgraph::visit::EdgeRef;
+            let other = if e.source().index() == t {
+                e.target().index()
+            } else {
+                e.source().index()
+            };
+            (other, *e.weight())
+        })
     }
 
     /// Leaf triangles (one neighbour; with a single triangle, that one).
@@ -183,7 +187,7 @@ impl DualTree {
         let mut queue = VecDeque::from([from]);
         dist[from] = 0;
         while let Some(t) = queue.pop_front() {
-            for (u, _) in self.neighbours(t) {
+            for (u, _) in self.neighbour_iter(t) {
                 if dist[u] == usize::MAX {
                     dist[u] = dist[t] + 1;
                     queue.push_back(u);
@@ -223,7 +227,7 @@ impl DualTree {
         let mut queue = VecDeque::from([root]);
         while let Some(t) = queue.pop_front() {
             order.push(t);
-            for (u, [a, b]) in self.neighbours(t) {
+            for (u, [a, b]) in self.neighbour_iter(t) {
                 if seen[u] {
                     continue;
                 }

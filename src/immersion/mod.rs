@@ -116,6 +116,21 @@ pub enum NotSelfOverlapping {
         /// The limit of the triangulator asked.
         limit: usize,
     },
+    /// The max–min-angle DP would weigh more candidate triangles than it
+    /// accepts (its time grows with them, up to n³/6 on a nearly convex
+    /// curve); refused before it starts. Use the Delaunay quality, or
+    /// simplify the curve.
+    #[error(
+        "this curve needs {} candidate triangles for the max–min triangulation; the limit is {} (about 10 s on 2 cores); use --quality delaunay or simplify the curve",
+        thousands(*candidates),
+        thousands(*limit)
+    )]
+    TooManyCandidates {
+        /// Candidate triangles `(i, k, j)` over the feasible sub-polygons.
+        candidates: u64,
+        /// [`crate::quality::MAX_MAXMIN_CANDIDATES`].
+        limit: u64,
+    },
 }
 
 impl NotSelfOverlapping {
@@ -127,9 +142,23 @@ impl NotSelfOverlapping {
             self,
             NotSelfOverlapping::OutOfRange(_)
                 | NotSelfOverlapping::TooManyPoints { .. }
+                | NotSelfOverlapping::TooManyCandidates { .. }
                 | NotSelfOverlapping::Degenerate
         )
     }
+}
+
+/// `x` with commas between groups of three digits.
+fn thousands(x: u64) -> String {
+    let digits = x.to_string();
+    let mut out = String::with_capacity(digits.len() * 4 / 3);
+    for (at, c) in digits.chars().enumerate() {
+        if at > 0 && (digits.len() - at) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
 }
 
 /// Most points the decision DP accepts: its four n × n bit tables take
@@ -265,6 +294,13 @@ pub fn dp_memory_bytes(n: usize) -> usize {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn thousands_are_grouped() {
+        assert_eq!(super::thousands(0), "0");
+        assert_eq!(super::thousands(999), "999");
+        assert_eq!(super::thousands(1000), "1,000");
+        assert_eq!(super::thousands(7_671_151_536), "7,671,151,536");
+    }
     use super::*;
 
     fn rng(seed: u64) -> impl FnMut() -> f64 {

@@ -88,7 +88,10 @@ impl FromStr for Quality {
 ///
 /// # Errors
 ///
-/// As [`crate::immersion::triangulate`].
+/// As [`crate::immersion::triangulate`]; also
+/// [`NotSelfOverlapping::TooManyPoints`] over [`MAX_MAXMIN_POINTS`] and
+/// [`NotSelfOverlapping::TooManyCandidates`] over
+/// [`MAX_MAXMIN_CANDIDATES`] candidate triangles (refused before the DP).
 pub fn triangulate_maxmin(points: &[Point]) -> Result<Immersion, NotSelfOverlapping> {
     triangulate_with_progress(points, Quality::MaxMin, &mut |_| {})
 }
@@ -156,8 +159,7 @@ pub fn triangulate_with_progress(
                     limit: MAX_MAXMIN_POINTS,
                 });
             }
-            let triangles = optimal::maxmin(points, progress)
-                .ok_or(NotSelfOverlapping::NoValidTriangulation)?;
+            let triangles = optimal::maxmin(points, MAX_MAXMIN_CANDIDATES, progress)?;
             Ok(Immersion {
                 points: points.to_vec(),
                 triangles,
@@ -169,6 +171,14 @@ pub fn triangulate_with_progress(
 /// Most points the max–min-angle DP accepts: it keeps about 36n² bytes
 /// of tables (576 MB at this limit).
 pub const MAX_MAXMIN_POINTS: usize = 4_000;
+
+/// Most candidate triangles `(i, k, j)` (apexes of feasible sub-polygons,
+/// counted from the decision table before the max–min DP starts) that the
+/// max–min DP accepts: about 10 s on 2 cores for a nearly convex curve,
+/// where nearly every candidate is measured. A spiral strip of 4,000
+/// points needs far fewer; a nearly convex blob of 2,000 fits, one of
+/// 3,000 does not.
+pub const MAX_MAXMIN_CANDIDATES: u64 = 1_500_000_000;
 
 /// Working memory of [`triangulate_maxmin`] for `n` points, in bytes.
 pub fn maxmin_memory_bytes(n: usize) -> usize {

@@ -23,15 +23,22 @@
 //!
 //! Complexity: O(n³) objective evaluations in the worst case (candidates
 //! whose sub-polygon values already lose are skipped before the triangle is
-//! tested or measured), plus the decision DP. Memory: four `n × n` `f64`
+//! tested or measured), plus the decision DP. The candidates are counted
+//! from the decision table first ([`candidate_count`], O(n³/64) word
+//! operations) and a curve with more than the caller's limit is refused
+//! before the DP runs. Memory: four `n × n` `f64`
 //! tables (row-major and transposed copies of the two objective values) and
 //! one `n × n` `u32` table of apexes, 36n² bytes (36 MB at n = 1000, 576 MB
 //! at n = 4000), plus the decision table.
 
 use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
 
+use rayon::prelude::*;
+
 use crate::geom::Point;
-use crate::immersion::dp::{decide, fill_by_tiles, is_ccw};
+use crate::immersion::NotSelfOverlapping;
+use crate::immersion::dp::{Table, decide, fill_by_tiles, is_ccw};
+use crate::immersion::valid::open_range_word;
 
 const NONE: u32 = u32::MAX;
 
@@ -85,20 +92,65 @@ impl Floats {
     }
 }
 
+/// The candidate triangles `(i, k, j)` of the max–min DP over the
+/// feasible cells of `table`: apexes `k` with `Q[i][k]` and `Q[k][j]`
+/// (before the corner tests, so an upper bound on the triangles the DP
+/// visits), counted by popcounts of the row and column words: O(n³/64)
+/// word operations at worst, a few percent of the DP it bounds.
+pub(crate) fn candidate_count(table: &Table, n: usize) -> u64 {
+    let total = AtomicU64::new(0);
+    (0..n.saturating_sub(2)).into_par_iter().for_each(|i| {
+        let row = table.rows.row(i);
+        let mut here = 0u64;
+        for j in i + 2..n {
+            if !table.get(i, j) {
+                continue;
+            }
+            let col = table.cols.row(j);
+            let (first, last) = ((i + 1) / 64, (j - 1) / 64);
+            for w in first..=last {
+                let mut bits = row[w].load(Relaxed) & col[w].load(Relaxed);
+                if w == first || w == last {
+                    bits &= open_range_word(w, i, j);
+                }
+                here += u64::from(bits.count_ones());
+            }
+        }
+        total.fetch_add(here, Relaxed);
+    });
+    total.into_inner()
+}
+
 /// Share of the progress bar given to the decision DP.
 const DECIDE_SHARE: f64 = 0.2;
 
-/// The max–min-angle triangulation by valid triangles (module docs), or
-/// `None` when none exists. `n ≥ 3` is assumed.
-pub(crate) fn maxmin(points: &[Point], progress: &mut dyn FnMut(f64)) -> Option<Vec<[u32; 3]>> {
+/// The max–min-angle triangulation by valid triangles (module docs).
+/// `n ≥ 3` is assumed.
+///
+/// # Errors
+///
+/// [`NotSelfOverlapping::NoValidTriangulation`] when none exists;
+/// [`NotSelfOverlapping::TooManyCandidates`], before the max–min DP
+/// starts, when it would visit more than `limit` candidate triangles
+/// ([`candidate_count`]).
+pub(crate) fn maxmin(
+    points: &[Point],
+    limit: u64,
+    progress: &mut dyn FnMut(f64),
+) -> Result<Vec<[u32; 3]>, NotSelfOverlapping> {
     let n = points.len();
     if n < 3 {
-        return None;
+        return Err(NotSelfOverlapping::Degenerate);
     }
     let table = decide(points, &mut |f| progress(DECIDE_SHARE * f));
     if !table.get(0, n - 1) {
         progress(1.0);
-        return None;
+        return Err(NotSelfOverlapping::NoValidTriangulation);
+    }
+    let candidates = candidate_count(&table, n);
+    if candidates > limit {
+        progress(1.0);
+        return Err(NotSelfOverlapping::TooManyCandidates { candidates, limit });
     }
     // Row-major (value, sum) pairs at 2 (i n + j), and the transposed
     // copy at 2 (j n + i), so both operands of a cell are read in order.
@@ -157,7 +209,7 @@ pub(crate) fn maxmin(points: &[Point], progress: &mut dyn FnMut(f64)) -> Option<
         let k = arg[i * n + j].load(Relaxed);
         if k == NONE {
             debug_assert!(false, "max-min DP backtrack hit an empty cell: a bug");
-            return None;
+            return Err(NotSelfOverlapping::NoValidTriangulation);
         }
         let k = k as usize;
         out.push([i as u32, k as u32, j as u32]);
@@ -165,7 +217,7 @@ pub(crate) fn maxmin(points: &[Point], progress: &mut dyn FnMut(f64)) -> Option<
         stack.push((k, j));
     }
     out.sort_unstable();
-    Some(out)
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -194,7 +246,31 @@ mod tests {
                 Point::new(a.cos(), a.sin())
             })
             .collect();
-        let t = maxmin(&pts, &mut |_| {}).expect("convex");
+        let t = maxmin(&pts, u64::MAX, &mut |_| {}).expect("convex");
         assert_eq!(crate::immersion::check(&pts, &t), Ok(()));
+    }
+
+    #[test]
+    fn the_candidate_count_bounds_the_work() {
+        // A convex n-gon: every chord is feasible and every apex a
+        // candidate, C(n, 3) triangles in all.
+        let n = 40;
+        let pts: Vec<Point> = (0..n)
+            .map(|i| {
+                let a = i as f64 * std::f64::consts::TAU / n as f64;
+                Point::new(a.cos(), a.sin())
+            })
+            .collect();
+        let table = decide(&pts, &mut |_| {});
+        let all = (n * (n - 1) * (n - 2) / 6) as u64;
+        assert_eq!(candidate_count(&table, n), all);
+        assert_eq!(
+            maxmin(&pts, all - 1, &mut |_| {}),
+            Err(NotSelfOverlapping::TooManyCandidates {
+                candidates: all,
+                limit: all - 1
+            })
+        );
+        assert!(maxmin(&pts, all, &mut |_| {}).is_ok());
     }
 }

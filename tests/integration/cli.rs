@@ -396,6 +396,34 @@ fn curves_too_large_for_the_dp_are_refused_with_exit_2() {
         "{}",
         stderr(&out)
     );
+    // Within the point limit, a nearly convex curve whose max–min DP would
+    // weigh too many candidate triangles is refused before the DP runs.
+    let m = 3000;
+    let pts: Vec<[f64; 2]> = (0..m)
+        .map(|i| {
+            let a = std::f64::consts::TAU * i as f64 / m as f64;
+            [a.cos(), a.sin()]
+        })
+        .collect();
+    std::fs::write(
+        dir.path().join("busy.json"),
+        serde_json::to_string(&pts).unwrap(),
+    )
+    .unwrap();
+    let out = immerse_in(
+        dir.path(),
+        &["triangulate", "busy.json", "--quality", "maxmin"],
+    );
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("busy.json: this curve needs ")
+            && stderr(&out).contains(
+                " candidate triangles for the max–min triangulation; the limit is 1,500,000,000 \
+                 (about 10 s on 2 cores); use --quality delaunay"
+            ),
+        "{}",
+        stderr(&out)
+    );
 }
 
 #[test]

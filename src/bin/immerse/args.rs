@@ -340,7 +340,9 @@ pub(crate) enum QualityArg {
     Any,
     /// The witness improved by immersed Delaunay edge flips.
     Delaunay,
-    /// The valid triangulation maximising the minimum angle (slower).
+    /// The valid triangulation maximising the minimum angle (slower; at
+    /// most 4,000 points and 1.5 billion candidate triangles, about 10 s:
+    /// nearly convex curves past about 2,500 points are refused).
     Maxmin,
 }
 

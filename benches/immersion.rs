@@ -5,27 +5,18 @@
 //! Input: a self-overlapping spiral strip of two turns with n vertices.
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use immerse::geom::Point;
 use immerse::{improve, triangulate, triangulate_maxmin};
 use std::hint::black_box;
 
-fn spiral_strip(n: usize, turns: f64) -> Vec<Point> {
-    let half = n / 2;
-    let at = |i: usize, r0: f64| {
-        let a = i as f64 / (half - 1) as f64 * turns * std::f64::consts::TAU;
-        let r = r0 + 0.25 * a;
-        Point::new(r * a.cos(), r * a.sin())
-    };
-    let mut pts: Vec<Point> = (0..half).map(|i| at(i, 2.0)).collect();
-    pts.extend((0..half).rev().map(|i| at(i, 1.0)));
-    pts
-}
+#[path = "../tests/common/shapes.rs"]
+mod shapes;
+use shapes::wide_spiral;
 
 fn immersion(c: &mut Criterion) {
     let mut g = c.benchmark_group("dp");
     g.sample_size(10);
     for n in [100, 250, 500, 1000, 2000] {
-        let pts = spiral_strip(n, 2.0);
+        let pts = wide_spiral(n, 2.0);
         g.bench_with_input(BenchmarkId::from_parameter(n), &pts, |b, pts| {
             b.iter(|| black_box(triangulate(pts).ok()))
         });
@@ -35,7 +26,7 @@ fn immersion(c: &mut Criterion) {
     let mut g = c.benchmark_group("delaunay_flips");
     g.sample_size(10);
     for n in [100, 250, 500, 1000, 2000] {
-        let Ok(witness) = triangulate(&spiral_strip(n, 2.0)) else {
+        let Ok(witness) = triangulate(&wide_spiral(n, 2.0)) else {
             continue;
         };
         g.bench_with_input(BenchmarkId::from_parameter(n), &witness, |b, w| {
@@ -47,7 +38,7 @@ fn immersion(c: &mut Criterion) {
     let mut g = c.benchmark_group("maxmin");
     g.sample_size(10);
     for n in [100, 250, 500, 1000] {
-        let pts = spiral_strip(n, 2.0);
+        let pts = wide_spiral(n, 2.0);
         g.bench_with_input(BenchmarkId::from_parameter(n), &pts, |b, pts| {
             b.iter(|| black_box(triangulate_maxmin(pts).ok()))
         });

@@ -8,34 +8,13 @@
 //! `-- tween`).
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use immerse::Point;
 use immerse::morph::{Compatible, CurveMorphOptions, ThirdVertexPath, Tween, morph_curves};
 use immerse::tree::RootChoice;
-use std::f64::consts::TAU;
 use std::hint::black_box;
 
-/// A spiral strip of `m` stations and its zigzag triangulation (n = 2m).
-fn spiral_strip(m: usize, turns: f64, width: f64) -> (Vec<Point>, Vec<[u32; 3]>) {
-    let station = |i: usize| {
-        let th = turns * TAU * i as f64 / (m - 1) as f64;
-        (th, 1.0 + 0.12 * th / TAU)
-    };
-    let mut pts: Vec<Point> = (0..m)
-        .map(|i| {
-            let (th, r) = station(i);
-            Point::from_angle(th) * (r + width / 2.0)
-        })
-        .collect();
-    pts.extend((0..m).rev().map(|i| {
-        let (th, r) = station(i);
-        Point::from_angle(th) * (r - width / 2.0)
-    }));
-    let n = 2 * m as u32;
-    let tris = (0..(m as u32 - 1))
-        .flat_map(|i| [[i, i + 1, n - 1 - i], [i + 1, n - 2 - i, n - 1 - i]])
-        .collect();
-    (pts, tris)
-}
+#[path = "../tests/common/shapes.rs"]
+mod shapes;
+use shapes::spiral_strip;
 
 fn frames(c: &mut Criterion) {
     let mut g = c.benchmark_group("frame");

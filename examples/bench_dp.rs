@@ -31,18 +31,8 @@ use immerse::{improve, triangulate, triangulate_maxmin};
 #[allow(dead_code, reason = "only the curve generators are used here")]
 mod harness;
 
-/// A spiral strip of `n` vertices (n even) turning `turns` times.
-fn spiral_strip(n: usize, turns: f64) -> Vec<Point> {
-    let half = n / 2;
-    let at = |i: usize, r0: f64| {
-        let a = i as f64 / (half - 1) as f64 * turns * std::f64::consts::TAU;
-        let r = r0 + 0.25 * a;
-        Point::new(r * a.cos(), r * a.sin())
-    };
-    let mut pts: Vec<Point> = (0..half).map(|i| at(i, 2.0)).collect();
-    pts.extend((0..half).rev().map(|i| at(i, 1.0)));
-    pts
-}
+#[path = "../tests/common/shapes.rs"]
+mod shapes;
 
 /// A regular n-gon: convex, so every triangle is valid (the max–min DP's
 /// worst case for pruning).
@@ -169,7 +159,7 @@ fn scale() {
         let pts = if shape == "blob" {
             blob(n)
         } else {
-            spiral_strip(n, 2.0)
+            shapes::wide_spiral(n, 2.0)
         };
         let path = dir.path().join(format!("{shape}-{n}.json"));
         std::fs::write(&path, harness::curve_json(shape, &pts)).expect("write the curve");
@@ -251,7 +241,7 @@ fn main() {
     for n in sizes {
         let pts = match shape.as_str() {
             "circle" => circle(n),
-            _ => spiral_strip(n, 2.0),
+            _ => shapes::wide_spiral(n, 2.0),
         };
         let runs = if n >= 1000 { 5 } else { 11 };
         let witness = match triangulate(&pts) {

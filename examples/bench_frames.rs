@@ -4,37 +4,13 @@
 //!
 //! Run with `cargo run --release --example bench_frames`.
 
-use immerse::Point;
 use immerse::morph::{Compatible, CurveMorphOptions, ThirdVertexPath, morph_curves};
 use immerse::tree::RootChoice;
-use std::f64::consts::TAU;
 use std::time::Instant;
 
-/// A spiral strip of `m` stations curling `turns` times and its zigzag
-/// triangulation (outer edge forward, inner edge back): an immersed disk
-/// for any number of turns, with n = 2m vertices.
-fn spiral_strip(m: usize, turns: f64, width: f64) -> (Vec<Point>, Vec<[u32; 3]>) {
-    let station = |i: usize| {
-        let th = turns * TAU * i as f64 / (m - 1) as f64;
-        (th, 1.0 + 0.12 * th / TAU)
-    };
-    let mut pts = Vec::with_capacity(2 * m);
-    for i in 0..m {
-        let (th, r) = station(i);
-        pts.push(Point::from_angle(th) * (r + width / 2.0));
-    }
-    for i in (0..m).rev() {
-        let (th, r) = station(i);
-        pts.push(Point::from_angle(th) * (r - width / 2.0));
-    }
-    let n = 2 * m as u32;
-    let mut tris = Vec::new();
-    for i in 0..(m as u32 - 1) {
-        tris.push([i, i + 1, n - 1 - i]);
-        tris.push([i + 1, n - 2 - i, n - 1 - i]);
-    }
-    (pts, tris)
-}
+#[path = "../tests/common/shapes.rs"]
+mod shapes;
+use shapes::spiral_strip;
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);

@@ -32,27 +32,14 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
+#[path = "../tests/common/shapes.rs"]
+mod shapes;
+
 /// A spiral strip of n vertices (n/2 stations, outer edge out, inner edge
 /// back) wound `turns` times; its width is more than the radius gained in
 /// one turn, so it overlaps itself.
 fn spiral(n: usize, turns: f64) -> Vec<Point> {
-    let m = n / 2;
-    let station = |i: usize| {
-        let th = turns * TAU * i as f64 / (m - 1) as f64;
-        (th, 1.0 + 0.12 * th / TAU)
-    };
-    let width = 0.3;
-    let mut pts: Vec<Point> = (0..m)
-        .map(|i| {
-            let (th, r) = station(i);
-            Point::from_angle(th) * (r + width / 2.0)
-        })
-        .collect();
-    pts.extend((0..m).rev().map(|i| {
-        let (th, r) = station(i);
-        Point::from_angle(th) * (r - width / 2.0)
-    }));
-    pts
+    shapes::spiral_strip(n / 2, turns, 0.3).0
 }
 
 /// A star-shaped blob of n vertices.

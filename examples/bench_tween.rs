@@ -16,28 +16,12 @@
 use immerse::correspond::insert_vertices;
 use immerse::morph::{CurveMorphOptions, Tween};
 use immerse::{Curve, Point};
-use std::f64::consts::TAU;
 use std::hint::black_box;
 use std::time::Instant;
 
-/// A spiral strip of `m` stations curling `turns` times: n = 2m vertices.
-fn spiral_strip(m: usize, turns: f64, width: f64) -> Vec<Point> {
-    let station = |i: usize| {
-        let th = turns * TAU * i as f64 / (m - 1) as f64;
-        (th, 1.0 + 0.12 * th / TAU)
-    };
-    let mut pts: Vec<Point> = (0..m)
-        .map(|i| {
-            let (th, r) = station(i);
-            Point::from_angle(th) * (r + width / 2.0)
-        })
-        .collect();
-    pts.extend((0..m).rev().map(|i| {
-        let (th, r) = station(i);
-        Point::from_angle(th) * (r - width / 2.0)
-    }));
-    pts
-}
+#[path = "../tests/common/shapes.rs"]
+mod shapes;
+use shapes::spiral_strip;
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -65,8 +49,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let spirals = (
             "spiral strips",
             n,
-            spiral_strip(n / 2, 1.4, 0.3),
-            spiral_strip(n / 2, 0.7, 0.3),
+            spiral_strip(n / 2, 1.4, 0.3).0,
+            spiral_strip(n / 2, 0.7, 0.3).0,
         );
         let up = |p: &[Point]| insert_vertices(p, n.saturating_sub(p.len())).0;
         let drawings = ("ribbon → tail", n, up(&ribbon), up(&tail));

@@ -355,17 +355,7 @@ fn mesh_morph_check_linear_accepts_a_valid_linear_morph() {
 fn curves_too_large_for_the_dp_are_refused_with_exit_2() {
     let dir = tempfile::tempdir().unwrap();
     let n = immerse::immersion::MAX_DP_POINTS + 1;
-    let pts: Vec<[f64; 2]> = (0..n)
-        .map(|i| {
-            let a = std::f64::consts::TAU * i as f64 / n as f64;
-            [a.cos(), a.sin()]
-        })
-        .collect();
-    std::fs::write(
-        dir.path().join("big.json"),
-        serde_json::to_string(&pts).unwrap(),
-    )
-    .unwrap();
+    write_polygon(&dir.path().join("big.json"), n);
     let out = immerse_in(dir.path(), &["check", "big.json"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(
@@ -375,17 +365,7 @@ fn curves_too_large_for_the_dp_are_refused_with_exit_2() {
     );
     // The max–min DP has its own, lower limit.
     let m = immerse::quality::MAX_MAXMIN_POINTS + 1;
-    let pts: Vec<[f64; 2]> = (0..m)
-        .map(|i| {
-            let a = std::f64::consts::TAU * i as f64 / m as f64;
-            [a.cos(), a.sin()]
-        })
-        .collect();
-    std::fs::write(
-        dir.path().join("mid.json"),
-        serde_json::to_string(&pts).unwrap(),
-    )
-    .unwrap();
+    write_polygon(&dir.path().join("mid.json"), m);
     let out = immerse_in(
         dir.path(),
         &["triangulate", "mid.json", "--quality", "maxmin"],
@@ -399,17 +379,7 @@ fn curves_too_large_for_the_dp_are_refused_with_exit_2() {
     // Within the point limit, a nearly convex curve whose max–min DP would
     // weigh too many candidate triangles is refused before the DP runs.
     let m = 3000;
-    let pts: Vec<[f64; 2]> = (0..m)
-        .map(|i| {
-            let a = std::f64::consts::TAU * i as f64 / m as f64;
-            [a.cos(), a.sin()]
-        })
-        .collect();
-    std::fs::write(
-        dir.path().join("busy.json"),
-        serde_json::to_string(&pts).unwrap(),
-    )
-    .unwrap();
+    write_polygon(&dir.path().join("busy.json"), m);
     let out = immerse_in(
         dir.path(),
         &["triangulate", "busy.json", "--quality", "maxmin"],
@@ -488,4 +458,15 @@ fn triangulate_json_has_the_design_fields_and_a_valid_triangulation() {
         assert!(tris[spine[0]].contains(&pivot));
         assert!((v["root_triangle"].as_u64().unwrap() as usize) < tris.len());
     }
+}
+
+/// Writes a regular `m`-gon (a convex curve) as a JSON point list.
+fn write_polygon(path: &std::path::Path, m: usize) {
+    let pts: Vec<[f64; 2]> = (0..m)
+        .map(|i| {
+            let a = std::f64::consts::TAU * i as f64 / m as f64;
+            [a.cos(), a.sin()]
+        })
+        .collect();
+    std::fs::write(path, serde_json::to_string(&pts).unwrap()).unwrap();
 }

@@ -1,0 +1,48 @@
+//! Curves that the benchmarks and examples generate (`#[path]`-included),
+//! so that every table measures the same shapes.
+
+use immerse::Point;
+use std::f64::consts::TAU;
+
+/// A spiral strip of `m` stations curling `turns` times with the given
+/// width (outer edge out, inner edge back, n = 2m vertices) and its zigzag
+/// triangulation: an immersed disk for any number of turns; it overlaps
+/// itself once the width is more than the radius gained in a turn (0.12).
+#[allow(dead_code, reason = "not every includer uses every shape")]
+pub(crate) fn spiral_strip(m: usize, turns: f64, width: f64) -> (Vec<Point>, Vec<[u32; 3]>) {
+    let station = |i: usize| {
+        let th = turns * TAU * i as f64 / (m - 1) as f64;
+        (th, 1.0 + 0.12 * th / TAU)
+    };
+    let mut pts: Vec<Point> = (0..m)
+        .map(|i| {
+            let (th, r) = station(i);
+            Point::from_angle(th) * (r + width / 2.0)
+        })
+        .collect();
+    pts.extend((0..m).rev().map(|i| {
+        let (th, r) = station(i);
+        Point::from_angle(th) * (r - width / 2.0)
+    }));
+    let n = 2 * m as u32;
+    let tris = (0..(m as u32 - 1))
+        .flat_map(|i| [[i, i + 1, n - 1 - i], [i + 1, n - 2 - i, n - 1 - i]])
+        .collect();
+    (pts, tris)
+}
+
+/// A wide spiral strip of `n` vertices (n even) turning `turns` times
+/// whose turns do not touch (a simple polygon): the decision DP's
+/// benchmark shape.
+#[allow(dead_code, reason = "not every includer uses every shape")]
+pub(crate) fn wide_spiral(n: usize, turns: f64) -> Vec<Point> {
+    let half = n / 2;
+    let at = |i: usize, r0: f64| {
+        let a = i as f64 / (half - 1) as f64 * turns * TAU;
+        let r = r0 + 0.25 * a;
+        Point::new(r * a.cos(), r * a.sin())
+    };
+    let mut pts: Vec<Point> = (0..half).map(|i| at(i, 2.0)).collect();
+    pts.extend((0..half).rev().map(|i| at(i, 1.0)));
+    pts
+}

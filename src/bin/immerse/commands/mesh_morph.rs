@@ -124,7 +124,15 @@ pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
     }
     let n = args.frames as usize;
     let times: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
-    let frames = mesh_morph(&a, &b, method, &times, &options)?;
+    // A spinner where the solve can take seconds (about a million vertex
+    // positions and more), quiet otherwise.
+    let busy = super::spinner(
+        &format!("morphing {} vertices over {n} frames", a.points.len()),
+        args.quiet || a.points.len() * n < 1_000_000,
+    );
+    let frames = mesh_morph(&a, &b, method, &times, &options);
+    busy.finish_and_clear();
+    let frames = frames?;
     let invalid = frames.iter().filter(|f| !f.valid).count();
     if let Some(json) = &args.json {
         let doc = MorphJson {

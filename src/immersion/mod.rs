@@ -315,12 +315,7 @@ mod tests {
 
     /// Exhaustive: does any triangulation of 0..n use only valid triangles?
     fn brute(points: &[Point], i: usize, j: usize) -> bool {
-        if j == i + 1 {
-            return true;
-        }
-        (i + 1..j).any(|k| {
-            is_valid_triangle(points, i, k, j) && brute(points, i, k) && brute(points, k, j)
-        })
+        brute_common(&[points], i, j)
     }
 
     #[test]

@@ -671,7 +671,10 @@ pub(crate) fn plan(
     options: &CurveMorphOptions,
 ) -> Result<(Prepared, Sides), CurveMorphError> {
     let tri = Triangulations::new(a, b, options.quality);
-    let one = |rule: Correspondence| -> Result<Vec<(Prepared, Sides)>, CurveMorphError> {
+    // A rule's plan on the curves' own triangulations, and its plan on a
+    // common triangulation where there is one.
+    type Planned = (Prepared, Sides);
+    let one = |rule: Correspondence| -> Result<(Planned, Option<Planned>), CurveMorphError> {
         let p = prepare(&tri, options.counts, rule)?;
         let k = match p.shift {
             Some(k) => k,
@@ -695,30 +698,34 @@ pub(crate) fn plan(
                 Some((q, s))
             },
         );
-        Ok(std::iter::once((p, own)).chain(common).collect())
+        Ok(((p, own), common))
     };
-    let candidates = if options.correspondence == Correspondence::Best {
+    let (first, others) = if options.correspondence == Correspondence::Best {
         // The two trials are independent: planned side by side.
         let (outline, min_flips) = rayon::join(
             || one(Correspondence::Outline),
             || one(Correspondence::MinFlips),
         );
-        let mut all = outline?;
-        all.extend(min_flips?);
-        all
+        let ((outline, outline_common), (min_flips, min_flips_common)) = (outline?, min_flips?);
+        (
+            outline,
+            vec![outline_common, Some(min_flips), min_flips_common],
+        )
     } else {
-        one(options.correspondence)?
+        let (own, common) = one(options.correspondence)?;
+        (own, vec![common])
     };
-    let travel = |(_, s): &(Prepared, Sides)| {
+    let travel = |(_, s): &Planned| {
         let chosen = if s.use_a { &s.a } else { &s.b };
         chosen.as_ref().map_or(f64::INFINITY, Staged::mean_travel)
     };
-    let mut best: Option<(f64, (Prepared, Sides))> = None;
-    for candidate in candidates {
-        let t = travel(&candidate);
-        if best.as_ref().is_none_or(|(b, _)| t < *b) {
-            best = Some((t, candidate));
-        }
-    }
-    Ok(best.expect("every rule plans at least one candidate").1)
+    // The first plan that travels least.
+    let best = others
+        .into_iter()
+        .flatten()
+        .fold((travel(&first), first), |best, candidate| {
+            let t = travel(&candidate);
+            if t < best.0 { (t, candidate) } else { best }
+        });
+    Ok(best.1)
 }

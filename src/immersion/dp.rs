@@ -117,6 +117,11 @@ enum Side {
 
 impl Table {
     fn new(points: &[Point]) -> Self {
+        Self::with_planes(points, HalfPlanes::new(points))
+    }
+
+    /// [`Table::new`] with the half-plane masks of `points` given.
+    fn with_planes(points: &[Point], planes: HalfPlanes) -> Self {
         let n = points.len();
         let words = n.div_ceil(64).max(1);
         Self {
@@ -133,7 +138,7 @@ impl Table {
                     )
                 })
                 .collect(),
-            planes: HalfPlanes::new(points),
+            planes,
             others: Vec::new(),
         }
     }
@@ -362,12 +367,29 @@ pub(crate) fn decide(points: &[Point], progress: &mut dyn FnMut(f64)) -> Table {
 /// have a common (compatible) immersion triangulation. With one curve this
 /// is the decision DP of the module docs.
 pub(crate) fn decide_common(curves: &[&[Point]], progress: &mut dyn FnMut(f64)) -> Table {
+    let planes = curves.iter().map(|c| HalfPlanes::new(c)).collect();
+    decide_common_with(curves, planes, progress)
+}
+
+/// [`decide_common`] with the half-plane masks of every curve given (in
+/// the order of `curves`): a search over relabellings of one curve
+/// computes them once and rotates them ([`HalfPlanes::rotated`]).
+pub(crate) fn decide_common_with(
+    curves: &[&[Point]],
+    mut planes: Vec<HalfPlanes>,
+    progress: &mut dyn FnMut(f64),
+) -> Table {
     let points = curves[0];
     let n = points.len();
     debug_assert!(curves.iter().all(|c| c.len() == n));
-    let mut table = Table::new(points);
+    debug_assert_eq!(planes.len(), curves.len());
+    let others = planes.split_off(1);
+    let Some(first) = planes.pop() else {
+        return Table::new(points);
+    };
+    let mut table = Table::with_planes(points, first);
     debug_assert_eq!(table.bytes(), super::dp_memory_bytes(n));
-    table.others = curves[1..].iter().map(|c| HalfPlanes::new(c)).collect();
+    table.others = others;
     for i in 0..n.saturating_sub(1) {
         table.set(i, i + 1);
     }

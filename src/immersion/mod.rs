@@ -276,7 +276,37 @@ pub fn common_triangulation(curves: &[&[Point]]) -> Option<Vec<[u32; 3]>> {
     if curves.iter().any(|c| c.len() != n || precheck(c).is_err()) {
         return None;
     }
-    let table = dp::decide_common(curves, &mut |_| {});
+    common_triangulation_with(curves, curves.iter().map(|c| CurveMasks::new(c)).collect())
+}
+
+/// The half-plane masks of a curve, for [`common_triangulation_with`]:
+/// computed once, relabelled cheaply.
+#[derive(Clone, Debug)]
+pub(crate) struct CurveMasks(valid::HalfPlanes);
+
+impl CurveMasks {
+    pub(crate) fn new(points: &[Point]) -> Self {
+        CurveMasks(valid::HalfPlanes::new(points))
+    }
+
+    /// The masks of `points[(v + shift) % n]` as vertex `v`.
+    pub(crate) fn rotated(&self, shift: usize) -> Self {
+        CurveMasks(self.0.rotated(shift))
+    }
+}
+
+/// [`common_triangulation`] with each curve's masks given (`masks[i]` of
+/// `curves[i]`).
+pub(crate) fn common_triangulation_with(
+    curves: &[&[Point]],
+    masks: Vec<CurveMasks>,
+) -> Option<Vec<[u32; 3]>> {
+    let n = curves.first()?.len();
+    if curves.iter().any(|c| c.len() != n || precheck(c).is_err()) {
+        return None;
+    }
+    let planes = masks.into_iter().map(|m| m.0).collect();
+    let table = dp::decide_common_with(curves, planes, &mut |_| {});
     let mut triangles = dp::witness_common(curves, &table)?;
     triangles.sort_unstable();
     Some(triangles)

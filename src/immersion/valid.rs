@@ -11,9 +11,10 @@
 //!    is the counter-clockwise angle in [0, 2π) from `p_{v+1} − p_v` to
 //!    `p_x − p_v`.
 //!
-//! [`is_valid_triangle`] evaluates the definition literally with
-//! [`is_fan_order_less`]. The DP uses an equivalent form built from
-//! per-vertex half-plane masks: for a counter-clockwise triangle the test at
+//! The definition reads with [`is_fan_order_less`] (the tests evaluate it
+//! literally). [`is_valid_triangle`] and the DP use an equivalent form, the
+//! DP with per-vertex half-plane masks: for a counter-clockwise triangle the
+//! test at
 //! `v` fails exactly when `u` lies strictly right of the directed edge
 //! `(v, v + 1)` while `w` does not (the angle from `u` to `w` is below π, so
 //! it wraps past 2π only when it starts in the open right half-plane).
@@ -25,7 +26,9 @@
 use rayon::prelude::*;
 
 use crate::geom::Point;
-use crate::geom::predicates::{is_fan_order_less, orient};
+#[cfg(doc)]
+use crate::geom::predicates::is_fan_order_less;
+use crate::geom::predicates::orient;
 
 /// A dense square matrix of bits, row-major, each row a whole number of
 /// `u64` words. Index-only; knows nothing about coordinates.
@@ -58,6 +61,33 @@ impl BitMatrix {
         self.data[r * self.words + c / 64] >> (c % 64) & 1 == 1
     }
 
+    /// The matrix of the same relation after relabelling `v` as
+    /// `(v + n − shift) % n`: entry `(r, c)` is entry
+    /// `((r + shift) % n, (c + shift) % n)` of this one.
+    fn rotated(&self, shift: usize) -> BitMatrix {
+        let words = self.words;
+        let n = self.data.len() / words;
+        let mut out = BitMatrix::new(n);
+        if n == 0 {
+            return out;
+        }
+        let shift = shift % n;
+        for (r, dst) in out.data.chunks_mut(words).enumerate() {
+            let src = self.row((r + shift) % n);
+            for (w, d) in dst.iter_mut().enumerate() {
+                let len = (n - 64 * w).min(64);
+                let start = (64 * w + shift) % n;
+                *d = if start + len <= n {
+                    read_bits(src, start, len)
+                } else {
+                    let first = n - start;
+                    read_bits(src, start, first) | read_bits(src, 0, len - first) << first
+                };
+            }
+        }
+        out
+    }
+
     /// The transpose, by 64 × 64 blocks (rows of blocks in parallel).
     fn transpose(&self) -> BitMatrix {
         let n = self.data.len() / self.words;
@@ -85,6 +115,24 @@ impl BitMatrix {
                 }
             });
         out
+    }
+}
+
+/// Bits `start .. start + len` (`len` ≤ 64) of a bit row, as the low bits
+/// of a word.
+fn read_bits(row: &[u64], start: usize, len: usize) -> u64 {
+    if len == 0 {
+        return 0;
+    }
+    let (w, o) = (start / 64, start % 64);
+    let mut bits = row[w] >> o;
+    if o > 0 && w + 1 < row.len() {
+        bits |= row[w + 1] << (64 - o);
+    }
+    if len == 64 {
+        bits
+    } else {
+        bits & ((1u64 << len) - 1)
     }
 }
 
@@ -168,6 +216,24 @@ impl HalfPlanes {
         Self {
             right,
             right_t,
+            bad,
+            bad_flags,
+        }
+    }
+
+    /// The masks of the same points relabelled, `points[(v + shift) % n]`
+    /// becoming vertex `v`, without a single orientation: equal to
+    /// `HalfPlanes::new` of the relabelled points.
+    pub(crate) fn rotated(&self, shift: usize) -> Self {
+        let n = self.bad_flags.len();
+        let bad_flags: Vec<bool> = (0..n).map(|v| self.bad_flags[(v + shift) % n]).collect();
+        let mut bad = vec![0u64; self.bad.len()];
+        for v in (0..n).filter(|&v| bad_flags[v]) {
+            bad[v / 64] |= 1 << (v % 64);
+        }
+        Self {
+            right: self.right.rotated(shift),
+            right_t: self.right_t.rotated(shift),
             bad,
             bad_flags,
         }
@@ -264,15 +330,23 @@ pub fn is_valid_triangle(points: &[Point], a: usize, b: usize, c: usize) -> bool
     if [a, b, c].iter().any(|&v| p(v) == next(v)) {
         return false;
     }
-    orient(p(a), p(b), p(c)).is_ccw()
-        && is_fan_order_less(p(a), next(a), p(b), p(c))
-        && is_fan_order_less(p(b), next(b), p(c), p(a))
-        && is_fan_order_less(p(c), next(c), p(a), p(b))
+    if !orient(p(a), p(b), p(c)).is_ccw() {
+        return false;
+    }
+    // With the triangle counter-clockwise, the fan order φ_v(u) < φ_v(w)
+    // at corner v fails exactly when u is strictly right of the edge
+    // v → v+1 and w is not (the masks of the decision DP use the same
+    // rule; the tests hold both to the fan-order definition): two exact
+    // orientations per corner.
+    let right = |v: usize, x: usize| orient(p(v), next(v), p(x)).is_cw();
+    let fails = |v: usize, u: usize, w: usize| right(v, u) && !right(v, w);
+    !(fails(a, b, c) || fails(b, c, a) || fails(c, a, b))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::predicates::is_fan_order_less;
 
     fn rng(seed: u64) -> impl FnMut() -> u64 {
         let mut s = seed | 1;
@@ -291,6 +365,21 @@ mod tests {
         assert_eq!(open_range_word(1, 0, 200), u64::MAX);
         assert_eq!(open_range_word(1, 63, 65), 1);
         assert_eq!(open_range_word(2, 0, 100), 0);
+    }
+
+    /// The definition: counter-clockwise and the fan order holds at each
+    /// corner (module docs).
+    fn by_fan_order(points: &[Point], a: usize, b: usize, c: usize) -> bool {
+        let n = points.len();
+        let p = |v: usize| points[v];
+        let next = |v: usize| points[(v + 1) % n];
+        if [a, b, c].iter().any(|&v| p(v) == next(v)) {
+            return false;
+        }
+        orient(p(a), p(b), p(c)).is_ccw()
+            && is_fan_order_less(p(a), next(a), p(b), p(c))
+            && is_fan_order_less(p(b), next(b), p(c), p(a))
+            && is_fan_order_less(p(c), next(c), p(a), p(b))
     }
 
     #[test]
@@ -319,7 +408,12 @@ mod tests {
             for i in 0..n {
                 for j in i + 1..n {
                     for k in i + 1..j {
-                        let exact = is_valid_triangle(&pts, i, k, j);
+                        let exact = by_fan_order(&pts, i, k, j);
+                        assert_eq!(
+                            is_valid_triangle(&pts, i, k, j),
+                            exact,
+                            "{pts:?} {i} {k} {j}"
+                        );
                         assert_eq!(hp.is_valid(&pts, i, k, j), exact, "{pts:?} {i} {k} {j}");
                         let bit = orient(pts[i], pts[k], pts[j]).is_ccw()
                             && !hp.bad_flags[i]
@@ -351,7 +445,8 @@ mod tests {
             for i in [0, 1, 62, 63, 64, 65, 100, 127, 128, 140] {
                 for j in i + 2..n {
                     for k in i + 1..j {
-                        let exact = is_valid_triangle(&pts, i, k, j);
+                        let exact = by_fan_order(&pts, i, k, j);
+                        assert_eq!(is_valid_triangle(&pts, i, k, j), exact, "i={i} j={j} k={k}");
                         let bit = orient(pts[i], pts[k], pts[j]).is_ccw()
                             && !hp.bad_flags[i]
                             && !hp.bad_flags[j]
@@ -359,6 +454,27 @@ mod tests {
                         assert_eq!(bit, exact, "i={i} j={j} k={k}");
                     }
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn rotated_masks_are_the_masks_of_the_rotated_points() {
+        let mut r = rng(11);
+        for n in [1usize, 3, 5, 63, 64, 65, 130, 200] {
+            // Coarse grid: collinear points and repeated neighbours.
+            let pts: Vec<Point> = (0..n)
+                .map(|_| Point::new((r() % 6) as f64, (r() % 6) as f64))
+                .collect();
+            let hp = HalfPlanes::new(&pts);
+            for shift in [0, 1, n / 2, n.saturating_sub(1), 64 % n.max(1), 3 * n + 7] {
+                let rot: Vec<Point> = (0..n).map(|v| pts[(v + shift) % n]).collect();
+                let want = HalfPlanes::new(&rot);
+                let got = hp.rotated(shift);
+                assert_eq!(got.right.data, want.right.data, "n={n} shift={shift}");
+                assert_eq!(got.right_t.data, want.right_t.data, "n={n} shift={shift}");
+                assert_eq!(got.bad, want.bad, "n={n} shift={shift}");
+                assert_eq!(got.bad_flags, want.bad_flags, "n={n} shift={shift}");
             }
         }
     }

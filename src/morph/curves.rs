@@ -10,6 +10,7 @@ use crate::geom::Point;
 use crate::geom::polygon::min_triangle_angle as min_angle;
 use crate::immersion::{Immersion, NotSelfOverlapping};
 use crate::quality::{Quality, triangulate_with};
+use rayon::prelude::*;
 
 /// How the two curves are brought to the same vertex count.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -330,6 +331,9 @@ pub struct MorphReport {
     /// Where the source's side reached the target's triangulation: on the
     /// disk route the fraction of the way to the disk (0 when no flip was
     /// needed); on the target route the number of legs toward a target.
+    /// NaN when that side was not finished: it failed, or (target route)
+    /// it was given up because its vertices travelled farther than the
+    /// other side's.
     pub u_star: f64,
     /// The same from the target's side.
     pub v_star: f64,
@@ -390,12 +394,24 @@ pub fn morph_curves(
     Ok((report, morph))
 }
 
+/// One side of a plan: its staged path, or `None` when it was given up
+/// because its vertices travelled farther than a plan already made.
+pub(crate) type SideResult = Result<Option<Staged>, MorphError>;
+
 /// Both sides of the morph for one shift, and which one to use.
 pub(crate) struct Sides {
     pub(crate) k: usize,
-    pub(crate) a: Result<Staged, MorphError>,
-    pub(crate) b: Result<Staged, MorphError>,
+    pub(crate) a: SideResult,
+    pub(crate) b: SideResult,
     pub(crate) use_a: bool,
+}
+
+impl Sides {
+    /// The side to use, when it was finished.
+    pub(crate) fn chosen(&self) -> Option<&Staged> {
+        let s = if self.use_a { &self.a } else { &self.b };
+        s.as_ref().ok().and_then(Option::as_ref)
+    }
 }
 
 /// The curves after equalising counts and triangulating, with what that
@@ -546,8 +562,15 @@ pub(crate) fn prepare(
 /// 1/64 of the larger input's diagonal between two of them.
 const SAMPLES_PER_DIAGONAL: f64 = 64.0;
 
-/// Builds both sides for the shift `k` and picks the one to use.
-pub(crate) fn sides(p: &Prepared, k: usize, options: &CurveMorphOptions) -> Sides {
+/// Builds both sides for the shift `k` and picks the one to use. On the
+/// target route a side is given up once its vertices travel farther than
+/// `give_up_past` (a plan already made travels less).
+pub(crate) fn sides(
+    p: &Prepared,
+    k: usize,
+    options: &CurveMorphOptions,
+    give_up_past: f64,
+) -> Sides {
     let (a, b, ta, tb) = (&p.a, &p.b, &p.ta, &p.tb);
     let n = a.len();
     let m = &options.morph;
@@ -576,6 +599,12 @@ pub(crate) fn sides(p: &Prepared, k: usize, options: &CurveMorphOptions) -> Side
             intermediate: options.intermediate,
             floor,
             max_step,
+            give_up_past: match options.intermediate {
+                // The disk route picks a side by where it reaches the
+                // other triangulation, not by travel: nothing to give up.
+                Intermediate::Disk => f64::INFINITY,
+                Intermediate::Target => give_up_past,
+            },
         })
     };
     // The two sides are independent: one on each core.
@@ -585,14 +614,15 @@ pub(crate) fn sides(p: &Prepared, k: usize, options: &CurveMorphOptions) -> Side
     );
     let lex = crate::geom::polygon::lex_key;
     // The disk route compares where each side reaches the other
-    // triangulation (Mukherjee & Gopi); the target route compares path
-    // lengths. A side that failed loses.
-    let key = |s: &Result<Staged, MorphError>| match s {
-        Ok(s) => match options.intermediate {
+    // triangulation (Mukherjee & Gopi); the target route compares how far
+    // the vertices travel (the detour of docs/design.md §7b). A side that
+    // failed or was given up loses.
+    let key = |s: &SideResult| match s {
+        Ok(Some(s)) => match options.intermediate {
             Intermediate::Disk => s.u_star,
-            Intermediate::Target => s.path_length(),
+            Intermediate::Target => s.mean_travel(),
         },
-        Err(_) => f64::INFINITY,
+        Ok(None) | Err(_) => f64::INFINITY,
     };
     let use_a = match key(&side_a).total_cmp(&key(&side_b)) {
         std::cmp::Ordering::Less => true,
@@ -636,12 +666,18 @@ fn common_near(
     // curves finds the same triangulation at the same pairing.
     let swap = crate::geom::polygon::lex_key(b) < crate::geom::polygon::lex_key(a);
     let (base, other, k) = if swap { (b, a, (n - k) % n) } else { (a, b, k) };
+    // Masks computed once: each shift relabels the other curve's.
+    let (base_masks, other_masks) = rayon::join(
+        || crate::immersion::CurveMasks::new(base),
+        || crate::immersion::CurveMasks::new(other),
+    );
     let shifts = std::iter::once(k).chain((1..=reach).flat_map(|d| [(k + d) % n, (k + n - d) % n]));
     for shift in shifts {
         // other[(v + shift) % n] corresponds to base[v].
         let other_in_base: Vec<Point> = (0..n).map(|i| other[(i + shift) % n]).collect();
         let curves = [base, &other_in_base[..]];
-        let Some(t) = crate::immersion::common_triangulation(&curves) else {
+        let masks = vec![base_masks.clone(), other_masks.rotated(shift)];
+        let Some(t) = crate::immersion::common_triangulation_with(&curves, masks) else {
             continue;
         };
         let t = match quality {
@@ -665,66 +701,75 @@ fn common_near(
 /// shift, with a common triangulation (no flips); of all these the plan
 /// whose vertices travel less is kept (the detour of docs/design.md §7b,
 /// whose denominator they share).
+///
+/// The first rule's plan on the curves' own triangulations is made in
+/// full; the others are made side by side after it, each side given up
+/// as soon as its vertices travel farther than that plan's (it could not
+/// be kept), which saves most of the work of a losing plan.
 pub(crate) fn plan(
     a: &[Point],
     b: &[Point],
     options: &CurveMorphOptions,
 ) -> Result<(Prepared, Sides), CurveMorphError> {
     let tri = Triangulations::new(a, b, options.quality);
-    // A rule's plan on the curves' own triangulations, and its plan on a
-    // common triangulation where there is one.
     type Planned = (Prepared, Sides);
-    let one = |rule: Correspondence| -> Result<(Planned, Option<Planned>), CurveMorphError> {
+    let rules: &[Correspondence] = if options.correspondence == Correspondence::Best {
+        &[Correspondence::Outline, Correspondence::MinFlips]
+    } else {
+        std::slice::from_ref(&options.correspondence)
+    };
+    // A rule's curves and shift.
+    let prepared = |rule: Correspondence| -> Result<(Prepared, usize), CurveMorphError> {
         let p = prepare(&tri, options.counts, rule)?;
         let k = match p.shift {
             Some(k) => k,
             None => choose_shift(&p.a, &p.b, &p.ta, &p.tb, rule),
         };
-        // The plan with the curves' own triangulations and the plan with a
-        // common one are independent: side by side.
-        let (own, common) = rayon::join(
-            || sides(&p, k, options),
-            || {
-                let (shift, ta, tb) = common_near(&p.a, &p.b, k, options.quality)?;
-                let q = Prepared {
-                    a: p.a.clone(),
-                    b: p.b.clone(),
-                    ta,
-                    tb,
-                    shift: Some(shift),
-                    fallbacks: p.fallbacks.clone(),
-                };
-                let s = sides(&q, shift, options);
-                Some((q, s))
-            },
-        );
-        Ok(((p, own), common))
+        Ok((p, k))
     };
-    let (first, others) = if options.correspondence == Correspondence::Best {
-        // The two trials are independent: planned side by side.
-        let (outline, min_flips) = rayon::join(
-            || one(Correspondence::Outline),
-            || one(Correspondence::MinFlips),
-        );
-        let ((outline, outline_common), (min_flips, min_flips_common)) = (outline?, min_flips?);
-        (
-            outline,
-            vec![outline_common, Some(min_flips), min_flips_common],
-        )
-    } else {
-        let (own, common) = one(options.correspondence)?;
-        (own, vec![common])
+    // The same curves with a common triangulation near the shift `k`.
+    let common = |p: &Prepared, k: usize| -> Option<(Prepared, usize)> {
+        let (shift, ta, tb) = common_near(&p.a, &p.b, k, options.quality)?;
+        let q = Prepared {
+            a: p.a.clone(),
+            b: p.b.clone(),
+            ta,
+            tb,
+            shift: Some(shift),
+            fallbacks: p.fallbacks.clone(),
+        };
+        Some((q, shift))
     };
-    let travel = |(_, s): &Planned| {
-        let chosen = if s.use_a { &s.a } else { &s.b };
-        chosen.as_ref().map_or(f64::INFINITY, Staged::mean_travel)
-    };
+    let (p0, k0) = prepared(rules[0])?;
+    // The first plan in full; beside it, the other candidates are set up
+    // (shifts, common triangulations), in a fixed order.
+    let (first, others) = rayon::join(
+        || sides(&p0, k0, options, f64::INFINITY),
+        || -> Result<Vec<(Prepared, usize)>, CurveMorphError> {
+            let mut v: Vec<(Prepared, usize)> = common(&p0, k0).into_iter().collect();
+            for &rule in &rules[1..] {
+                let (p, k) = prepared(rule)?;
+                let c = common(&p, k);
+                v.push((p, k));
+                v.extend(c);
+            }
+            Ok(v)
+        },
+    );
+    let travel = |s: &Sides| s.chosen().map_or(f64::INFINITY, Staged::mean_travel);
+    let bound = travel(&first);
+    let others: Vec<Planned> = others?
+        .into_par_iter()
+        .map(|(p, k)| {
+            let s = sides(&p, k, options, bound);
+            (p, s)
+        })
+        .collect();
     // The first plan that travels least.
     let best = others
         .into_iter()
-        .flatten()
-        .fold((travel(&first), first), |best, candidate| {
-            let t = travel(&candidate);
+        .fold((bound, (p0, first)), |best, candidate| {
+            let t = travel(&candidate.1);
             if t < best.0 { (t, candidate) } else { best }
         });
     Ok(best.1)

@@ -292,6 +292,10 @@ pub(crate) struct SideInput<'a> {
     /// The largest vertex move allowed between checked samples (samples
     /// are refined until it holds).
     pub(crate) max_step: f64,
+    /// The side is given up (built as `None`) as soon as the mean travel
+    /// of its vertices passes this: a plan already made travels less.
+    /// Infinite when nothing is to be beaten.
+    pub(crate) give_up_past: f64,
 }
 
 impl SideInput<'_> {
@@ -336,15 +340,19 @@ enum Walk {
     Done(Box<Leg>, usize, Vec<Point>),
     /// No guaranteed path could be set up or checked toward this end.
     Failed(String),
+    /// The vertices travelled farther than [`SideInput::give_up_past`].
+    GaveUp,
 }
 
 impl Staged {
-    /// Builds the staged path of one side.
+    /// Builds the staged path of one side; `None` when its vertices
+    /// travel farther than [`SideInput::give_up_past`] (it was given up
+    /// there).
     ///
     /// # Errors
     ///
     /// [`MorphError`] when even the disk route cannot finish (a bug).
-    pub(crate) fn build(inp: &SideInput<'_>) -> Result<Staged, MorphError> {
+    pub(crate) fn build(inp: &SideInput<'_>) -> Result<Option<Staged>, MorphError> {
         let n = inp.s.len();
         let goal_tris: &[[u32; 3]] = if check(inp.other, inp.t_start).is_ok() {
             inp.t_start
@@ -407,6 +415,7 @@ impl Staged {
             )?;
             let (leg, applied, end_shape) = match walked {
                 Walk::Done(leg, applied, end_shape) => (*leg, applied, end_shape),
+                Walk::GaveUp => return Ok(None),
                 Walk::Failed(why) if !at_disk => {
                     st.fallbacks
                         .push(Fallback::new("finished through the disk", &why));
@@ -466,9 +475,11 @@ impl Staged {
             st.legs.len() as f64
         };
         // The last leg, to the other curve.
-        let last = last_leg(inp, &x, cur.triangles(), &mut st)?;
+        let Some(last) = last_leg(inp, &x, cur.triangles(), &mut st)? else {
+            return Ok(None);
+        };
         st.legs.push(last);
-        Ok(st)
+        Ok(Some(st))
     }
 
     /// Switches to the disk route from shape `x`.
@@ -512,6 +523,7 @@ fn walk(
     st: &mut Staged,
 ) -> Result<Walk, MorphError> {
     let mut why = String::new();
+    let travelled = st.mean_travel();
     for (attempt, path) in recovery_paths(inp.leg_path).into_iter().enumerate() {
         let plan = match inp.plan(x, end, tree) {
             // Toward a target-shaped intermediate, head for the other curve
@@ -543,6 +555,9 @@ fn walk(
                 Ok(p) => p,
                 Err(e) => break Err(e),
             };
+            if travelled + leg.mean_travel > inp.give_up_past {
+                return Ok(Walk::GaveUp);
+            }
             let applied = if s < 1.0 || !at_disk {
                 order.batch(cur, &p, floor, false)
             } else {
@@ -573,33 +588,82 @@ fn walk(
 
 /// The last leg, from `x` to the other curve under `tris` (valid on both),
 /// with the requested path, or the guaranteed ones in turn when a sample
-/// fails the exact check.
+/// fails the exact check; `None` when the side's vertices travel farther
+/// than [`SideInput::give_up_past`] along it.
 fn last_leg(
     inp: &SideInput<'_>,
     x: &[Point],
     tris: &[[u32; 3]],
     st: &mut Staged,
-) -> Result<Leg, MorphError> {
+) -> Result<Option<Leg>, MorphError> {
     let tree = DualTree::new(x.len(), tris).map_err(CompatibleError::from)?;
     let plan = inp.plan(x, inp.other, &tree)?;
     let mut why = String::new();
+    // The travel this leg may add before the side is given up.
+    let limit = inp.give_up_past - st.mean_travel();
     // The straight path competes with the hybrid one on the last leg: a
     // winding or unwinding that straight lines cut across is often
     // shorter along the hybrid path. The one whose vertices travel less
-    // is kept; the rival is given up as soon as it cannot win.
+    // is kept, unless it unwinds overlaps the other keeps (`Leg::beats`);
+    // the rival is given up as soon as it cannot win.
     let mut candidates = recovery_paths(inp.final_path);
     let compete = inp.final_path == ThirdVertexPath::Straight;
     let mut best: Option<(Leg, usize)> = None;
+    // The first path when it passed the limit before the rival was tried.
+    let mut passed: Option<ThirdVertexPath> = None;
     for (attempt, path) in candidates.drain(..).enumerate() {
         let rival = best.as_ref().map(|(b, _)| b);
-        match sample_leg(plan.clone(), path, x, tris, inp.max_step, rival) {
-            Ok(None) => break,
-            Ok(Some((leg, repairs))) => {
-                if attempt > 0 && best.is_none() {
+        // A rival that passes the limit travels more than the kept leg:
+        // it can still win only if it keeps overlaps the kept leg undoes,
+        // and then the side travels past the limit anyway. So the limit
+        // holds unless the kept leg unwinds.
+        let lim = match rival {
+            Some(r) if !r.keeps_overlaps() => f64::INFINITY,
+            _ => limit,
+        };
+        match sample_leg(plan.clone(), path, x, tris, inp.max_step, rival, lim) {
+            Ok(Sampled::CannotBeat) => break,
+            Ok(Sampled::PassedLimit) => {
+                if best.is_some() {
+                    // The kept leg keeps overlaps and travels less.
+                    break;
+                }
+                if !compete || passed.is_some() {
+                    // Every path this side could end with travels past
+                    // the limit.
+                    return Ok(None);
+                }
+                passed = Some(path);
+                continue;
+            }
+            Ok(Sampled::Done(leg, repairs)) => {
+                let leg = *leg;
+                if attempt > 0 && best.is_none() && passed.is_none() {
                     st.fallbacks.push(Fallback::new(
                         &format!("used the {path} path for the last leg"),
                         &why,
                     ));
+                }
+                if let Some(first) = passed.take() {
+                    // The first path passed the limit, this one did not:
+                    // this one wins unless it unwinds overlaps the first
+                    // keeps, which only the whole first path can tell.
+                    if !leg.keeps_overlaps()
+                        && let Ok(Sampled::Done(f, _)) = sample_leg(
+                            plan.clone(),
+                            first,
+                            x,
+                            tris,
+                            inp.max_step,
+                            None,
+                            f64::INFINITY,
+                        )
+                        && f.beats(&leg)
+                    {
+                        return Ok(None);
+                    }
+                    best = Some((leg, repairs));
+                    break;
                 }
                 let better = best.as_ref().is_none_or(|(b, _)| leg.beats(b));
                 if better {
@@ -616,8 +680,9 @@ fn last_leg(
     match best {
         Some((leg, repairs)) => {
             st.repairs += repairs;
-            Ok(leg)
+            Ok(Some(leg))
         }
+        None if passed.is_some() => Ok(None),
         None => Err(MorphError::InvalidFrame {
             t: 1.0,
             path: inp.final_path,
@@ -626,9 +691,20 @@ fn last_leg(
     }
 }
 
+/// How sampling a leg ended.
+enum Sampled {
+    /// Every sample passed the exact check: the leg and its repairs.
+    Done(Box<Leg>, usize),
+    /// It can no longer beat the rival.
+    CannotBeat,
+    /// Its vertices travelled farther than the limit.
+    PassedLimit,
+}
+
 /// Samples the whole of a leg with `path`, checking every sample exactly;
-/// `None` as soon as it cannot beat `rival` any more (its travel only
-/// grows and its least turning only falls).
+/// stops as soon as it cannot beat `rival` any more (its travel only
+/// grows and its least turning only falls) or its mean vertex travel
+/// passes `limit`.
 fn sample_leg(
     plan: Compatible,
     path: ThirdVertexPath,
@@ -636,7 +712,8 @@ fn sample_leg(
     tris: &[[u32; 3]],
     max_step: f64,
     rival: Option<&Leg>,
-) -> Result<Option<(Leg, usize)>, String> {
+    limit: f64,
+) -> Result<Sampled, String> {
     let steps = (1.0 / LEG_STEP).round() as usize;
     let mut leg = Leg::start(plan, path);
     let mut prev = x.to_vec();
@@ -651,10 +728,13 @@ fn sample_leg(
         prev = record(&mut leg, tris, max_step, &prev, s, p, &mut repairs)?;
         leg.least_turning = leg.least_turning.min(turning(&prev));
         if rival.is_some_and(|b| leg.cannot_beat(b)) {
-            return Ok(None);
+            return Ok(Sampled::CannotBeat);
+        }
+        if leg.mean_travel > limit {
+            return Ok(Sampled::PassedLimit);
         }
     }
-    Ok(Some((leg, repairs)))
+    Ok(Sampled::Done(Box::new(leg), repairs))
 }
 
 /// Finest refinement of a leg's samples, in its own parameter.
@@ -746,7 +826,9 @@ mod tests {
             intermediate,
             floor: 0.25 * min_angle(a, ta).min(min_angle(b, tb)),
             max_step: 0.05,
+            give_up_past: f64::INFINITY,
         })
+        .unwrap()
         .unwrap()
     }
 

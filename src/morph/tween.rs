@@ -115,7 +115,7 @@ impl Tween {
                 let Ok((p, s)) = plan(a, b, &retry) else {
                     continue;
                 };
-                if s.a.is_ok() || s.b.is_ok() {
+                if s.chosen().is_some() {
                     fallbacks.push(Fallback::new(
                         &what,
                         &format!(
@@ -151,13 +151,23 @@ impl Tween {
         options: &CurveMorphOptions,
         mut fallbacks: Vec<Fallback>,
     ) -> Result<Tween, CurveMorphError> {
-        let u_star = sides.a.as_ref().map_or(f64::NAN, |s| s.u_star);
-        let v_star = sides.b.as_ref().map_or(f64::NAN, |s| s.u_star);
+        let star = |s: &super::curves::SideResult| match s {
+            Ok(Some(s)) => s.u_star,
+            Ok(None) | Err(_) => f64::NAN,
+        };
+        let (u_star, v_star) = (star(&sides.a), star(&sides.b));
         let (staged, used) = if sides.use_a {
             (sides.a?, Side::Source)
         } else {
             (sides.b?, Side::Target)
         };
+        // A plan is kept only with a finished side, and that is the one
+        // it uses.
+        let staged = staged.ok_or_else(|| MorphError::InvalidFrame {
+            t: 0.0,
+            path: options.morph.path,
+            defect: "the side kept was given up while planning".to_string(),
+        })?;
         fallbacks.extend(staged.fallbacks.iter().cloned());
         let mut paths: Vec<ThirdVertexPath> = Vec::new();
         for leg in &staged.legs {

@@ -174,10 +174,20 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
             match args.intermediate {
                 IntermediateArg::Disk =>
                     format!("u* {:.3}, v* {:.3}", report.u_star, report.v_star),
-                IntermediateArg::Target => format!(
-                    "targets: {} from the source side, {} from the target side",
-                    report.u_star, report.v_star
-                ),
+                IntermediateArg::Target => {
+                    let side = |x: f64| {
+                        if x.is_nan() {
+                            "not finished".to_string()
+                        } else {
+                            x.to_string()
+                        }
+                    };
+                    format!(
+                        "targets: {} from the source side, {} from the target side",
+                        side(report.u_star),
+                        side(report.v_star)
+                    )
+                }
             },
             if report.used_disk {
                 "; used the disk"

@@ -559,8 +559,9 @@ pub(crate) fn prepare(
 
 /// Checked samples of the path per bounding-box diagonal of vertex travel
 /// at least: a leg's samples are refined until no vertex moves more than
-/// 1/64 of the larger input's diagonal between two of them.
-const SAMPLES_PER_DIAGONAL: f64 = 64.0;
+/// 1/32 of the larger input's diagonal between two of them (output
+/// frames are checked again at their own parameter).
+const SAMPLES_PER_DIAGONAL: f64 = 32.0;
 
 /// Builds both sides for the shift `k` and picks the one to use. On the
 /// target route a side is given up once its vertices travel farther than
@@ -645,19 +646,22 @@ type Triangles = Vec<[u32; 3]>;
 /// curves (O(n³/64) word operations), so the reach shrinks as n grows, and
 /// past the last bound none is tried (the plan keeps the curves' own
 /// triangulations).
-const COMMON_REACH: [(usize, usize); 3] = [(600, 3), (1500, 1), (3000, 0)];
+const COMMON_REACH: [(usize, usize); 2] = [(1500, 1), (3000, 0)];
 
 /// A triangulation valid on both curves at once, at the shift `k` or one
 /// within the [`COMMON_REACH`] of it (nearest first; `b[(v + shift) % n]`
 /// corresponds to `a[v]`): `(shift, triangles of a, triangles of b)`. The
 /// curves then morph without a single edge flip (often along a straighter
 /// and always along a cheaper way than a flip route). Improved by max–min
-/// flips that keep it common unless `quality` is [`Quality::Any`].
+/// flips that keep it common unless `quality` is [`Quality::Any`]. Shifts
+/// in `tried` (searched already on the same curves) are skipped; the ones
+/// searched here are added to it.
 fn common_near(
     a: &[Point],
     b: &[Point],
     k: usize,
     quality: Quality,
+    tried: &mut Vec<usize>,
 ) -> Option<(usize, Triangles, Triangles)> {
     let n = a.len();
     let (_, reach) = COMMON_REACH.iter().find(|&&(most, _)| n <= most)?;
@@ -666,13 +670,22 @@ fn common_near(
     // curves finds the same triangulation at the same pairing.
     let swap = crate::geom::polygon::lex_key(b) < crate::geom::polygon::lex_key(a);
     let (base, other, k) = if swap { (b, a, (n - k) % n) } else { (a, b, k) };
+    // A shift from `base` to `other` as one from `a` to `b` (an involution).
+    let a_to_b = |s: usize| if swap { (n - s) % n } else { s };
+    let shifts: Vec<usize> = std::iter::once(k)
+        .chain((1..=reach).flat_map(|d| [(k + d) % n, (k + n - d) % n]))
+        .filter(|&s| !tried.contains(&a_to_b(s)))
+        .collect();
+    if shifts.is_empty() {
+        return None;
+    }
     // Masks computed once: each shift relabels the other curve's.
     let (base_masks, other_masks) = rayon::join(
         || crate::immersion::CurveMasks::new(base),
         || crate::immersion::CurveMasks::new(other),
     );
-    let shifts = std::iter::once(k).chain((1..=reach).flat_map(|d| [(k + d) % n, (k + n - d) % n]));
     for shift in shifts {
+        tried.push(a_to_b(shift));
         // other[(v + shift) % n] corresponds to base[v].
         let other_in_base: Vec<Point> = (0..n).map(|i| other[(i + shift) % n]).collect();
         let curves = [base, &other_in_base[..]];
@@ -727,9 +740,10 @@ pub(crate) fn plan(
         };
         Ok((p, k))
     };
-    // The same curves with a common triangulation near the shift `k`.
-    let common = |p: &Prepared, k: usize| -> Option<(Prepared, usize)> {
-        let (shift, ta, tb) = common_near(&p.a, &p.b, k, options.quality)?;
+    // The same curves with a common triangulation near the shift `k`
+    // (skipping the shifts `tried` on them).
+    let common = |p: &Prepared, k: usize, tried: &mut Vec<usize>| -> Option<(Prepared, usize)> {
+        let (shift, ta, tb) = common_near(&p.a, &p.b, k, options.quality, tried)?;
         let q = Prepared {
             a: p.a.clone(),
             b: p.b.clone(),
@@ -746,10 +760,14 @@ pub(crate) fn plan(
     let (first, others) = rayon::join(
         || sides(&p0, k0, options, f64::INFINITY),
         || -> Result<Vec<(Prepared, usize)>, CurveMorphError> {
-            let mut v: Vec<(Prepared, usize)> = common(&p0, k0).into_iter().collect();
+            let mut tried = Vec::new();
+            let mut v: Vec<(Prepared, usize)> = common(&p0, k0, &mut tried).into_iter().collect();
             for &rule in &rules[1..] {
                 let (p, k) = prepared(rule)?;
-                let c = common(&p, k);
+                if (&p.a, &p.b) != (&p0.a, &p0.b) {
+                    tried.clear();
+                }
+                let c = common(&p, k, &mut tried);
                 v.push((p, k));
                 v.extend(c);
             }

@@ -646,7 +646,7 @@ type Triangles = Vec<[u32; 3]>;
 /// curves (O(n³/64) word operations), so the reach shrinks as n grows, and
 /// past the last bound none is tried (the plan keeps the curves' own
 /// triangulations).
-const COMMON_REACH: [(usize, usize); 2] = [(1500, 1), (3000, 0)];
+const COMMON_REACH: [(usize, usize); 1] = [(1500, 1)];
 
 /// A triangulation valid on both curves at once, at the shift `k` or one
 /// within the [`COMMON_REACH`] of it (nearest first; `b[(v + shift) % n]`

@@ -10,8 +10,9 @@
 #     0.4.2 (installed into a temporary folder with npm, as
 #     scripts/peer-compare.sh does)                       examples/bench_morph_scale.rs
 # Usage: scripts/bench-table.sh [--baseline OLD_IMMERSE] [--morph-scale] [> report.md]
-# With --baseline, the scale rows also time that earlier `immerse` binary
-# (up to 10,000 points for check; build it from an older commit).
+# With --baseline, the scale rows (and with --morph-scale the morph rows)
+# also time that earlier `immerse` binary (up to 10,000 points for check;
+# build it from an older commit).
 # --morph-scale takes a few minutes more (n = 5000, three runs per row) and
 # needs node and npm for the flubber columns (without them they say "not
 # run").
@@ -72,5 +73,5 @@ if $morph_scale; then
       flubber=(--flubber "$tmp/npm")
     fi
   fi
-  target/release/examples/bench_morph_scale ${flubber[@]+"${flubber[@]}"}
+  target/release/examples/bench_morph_scale ${flubber[@]+"${flubber[@]}"} ${baseline[@]+"${baseline[@]}"}
 fi

@@ -572,6 +572,20 @@ pub(crate) fn sides(
     options: &CurveMorphOptions,
     give_up_past: f64,
 ) -> Sides {
+    sides_beside(p, k, options, give_up_past, || ()).0
+}
+
+/// [`sides`], with `beside` run next to them: the source's side and
+/// `beside` one after the other on one core and the target's side on the
+/// other, so that whichever core finishes first takes `beside` over if the
+/// other has not started it.
+fn sides_beside<R: Send>(
+    p: &Prepared,
+    k: usize,
+    options: &CurveMorphOptions,
+    give_up_past: f64,
+    beside: impl FnOnce() -> R + Send,
+) -> (Sides, R) {
     let (a, b, ta, tb) = (&p.a, &p.b, &p.ta, &p.tb);
     let n = a.len();
     let m = &options.morph;
@@ -609,8 +623,8 @@ pub(crate) fn sides(
         })
     };
     // The two sides are independent: one on each core.
-    let (side_a, side_b) = rayon::join(
-        || side(a, ta, &b_in_a, &tb_in_a),
+    let ((side_a, r), side_b) = rayon::join(
+        || rayon::join(|| side(a, ta, &b_in_a, &tb_in_a), beside),
         || side(b, tb, &a_in_b, &ta_in_b),
     );
     let lex = crate::geom::polygon::lex_key;
@@ -630,12 +644,13 @@ pub(crate) fn sides(
         std::cmp::Ordering::Greater => false,
         std::cmp::Ordering::Equal => lex(a) <= lex(b),
     };
-    Sides {
+    let sides = Sides {
         k,
         a: side_a,
         b: side_b,
         use_a,
-    }
+    };
+    (sides, r)
 }
 
 /// A triangle list.
@@ -757,8 +772,11 @@ pub(crate) fn plan(
     let (p0, k0) = prepared(rules[0])?;
     // The first plan in full; beside it, the other candidates are set up
     // (shifts, common triangulations), in a fixed order.
-    let (first, others) = rayon::join(
-        || sides(&p0, k0, options, f64::INFINITY),
+    let (first, others) = sides_beside(
+        &p0,
+        k0,
+        options,
+        f64::INFINITY,
         || -> Result<Vec<(Prepared, usize)>, CurveMorphError> {
             let mut tried = Vec::new();
             let mut v: Vec<(Prepared, usize)> = common(&p0, k0, &mut tried).into_iter().collect();

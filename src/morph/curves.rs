@@ -2,7 +2,7 @@
 //! correspondence, then the morph (docs/design.md §5–7).
 
 use super::flips::crossings_per_shift;
-use super::staged::SideInput;
+use super::staged::{Limit, SideInput};
 use super::{MorphError, MorphOptions, Staged, ThirdVertexPath};
 use crate::correspond::{insert_vertices, resample_arc_length, shift_triangles};
 use crate::frames::{Fallback, Morph};
@@ -11,6 +11,7 @@ use crate::geom::polygon::min_triangle_angle as min_angle;
 use crate::immersion::{Immersion, NotSelfOverlapping};
 use crate::quality::{Quality, triangulate_with};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// How the two curves are brought to the same vertex count.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -601,8 +602,21 @@ fn sides_beside<R: Send>(
     };
     let diag = crate::geom::polygon::bbox_diagonal;
     let max_step = diag(a).max(diag(b)) / SAMPLES_PER_DIAGONAL;
-    let side = |s: &[Point], t: &[[u32; 3]], o: &[Point], to: &[[u32; 3]]| {
-        Staged::build(&SideInput {
+    // On the target route the sides race: each is given up once it
+    // travels farther than the other's finished travel (or the bound).
+    // The disk route picks a side by where it reaches the other
+    // triangulation, not by travel: nothing is given up there.
+    let racing = options.intermediate == Intermediate::Target;
+    let fixed = give_up_past;
+    let infinite = f64::INFINITY.to_bits();
+    let (done_a, done_b) = (AtomicU64::new(infinite), AtomicU64::new(infinite));
+    let side = |s: &[Point],
+                t: &[[u32; 3]],
+                o: &[Point],
+                to: &[[u32; 3]],
+                rival: &AtomicU64,
+                done: &AtomicU64| {
+        let built = Staged::build(&SideInput {
             s,
             t_start: t,
             other: o,
@@ -614,19 +628,45 @@ fn sides_beside<R: Send>(
             intermediate: options.intermediate,
             floor,
             max_step,
-            give_up_past: match options.intermediate {
-                // The disk route picks a side by where it reaches the
-                // other triangulation, not by travel: nothing to give up.
-                Intermediate::Disk => f64::INFINITY,
-                Intermediate::Target => give_up_past,
+            limit: if racing {
+                Limit {
+                    fixed,
+                    rival: Some(rival),
+                }
+            } else {
+                Limit::NONE
             },
-        })
+        });
+        if let (Ok(Some(st)), true) = (&built.0, racing) {
+            done.store(st.mean_travel().to_bits(), Ordering::Relaxed);
+        }
+        built
     };
     // The two sides are independent: one on each core.
-    let ((side_a, r), side_b) = rayon::join(
-        || rayon::join(|| side(a, ta, &b_in_a, &tb_in_a), beside),
-        || side(b, tb, &a_in_b, &ta_in_b),
+    let (((side_a, peak_a), r), (side_b, peak_b)) = rayon::join(
+        || rayon::join(|| side(a, ta, &b_in_a, &tb_in_a, &done_b, &done_a), beside),
+        || side(b, tb, &a_in_b, &ta_in_b, &done_a, &done_b),
     );
+    // Which side the race gives up depends on which finishes first; what
+    // is kept does not. A side whose travel (or, if it failed, whose
+    // travel when it last looked at its limit) passes its final limit
+    // could have been given up in another run: it counts as given up. The
+    // rest is what any run gives.
+    let travel = |s: &SideResult| match s {
+        Ok(Some(s)) => s.mean_travel(),
+        Ok(None) | Err(_) => f64::INFINITY,
+    };
+    let settle = |s: SideResult, peak: f64, other: &SideResult| -> SideResult {
+        let limit = fixed.min(travel(other));
+        match s {
+            Ok(Some(st)) if racing && st.mean_travel() > limit => Ok(None),
+            Err(_) if racing && peak > limit => Ok(None),
+            s => s,
+        }
+    };
+    let settled_a = settle(side_a, peak_a, &side_b);
+    let side_b = settle(side_b, peak_b, &settled_a);
+    let side_a = settled_a;
     let lex = crate::geom::polygon::lex_key;
     // The disk route compares where each side reaches the other
     // triangulation (Mukherjee & Gopi); the target route compares how far

@@ -293,9 +293,36 @@ pub(crate) struct SideInput<'a> {
     /// are refined until it holds).
     pub(crate) max_step: f64,
     /// The side is given up (built as `None`) as soon as the mean travel
-    /// of its vertices passes this: a plan already made travels less.
-    /// Infinite when nothing is to be beaten.
-    pub(crate) give_up_past: f64,
+    /// of its vertices passes this limit: a plan already made, or the
+    /// other side of this plan, travels less.
+    pub(crate) limit: Limit<'a>,
+}
+
+/// How far a side's vertices may travel before it is given up: a fixed
+/// bound (a plan made before) and, once the other side of the same plan
+/// has finished, that side's travel.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Limit<'a> {
+    pub(crate) fixed: f64,
+    /// The other side's travel once it finished (f64 bits; infinite
+    /// before).
+    pub(crate) rival: Option<&'a std::sync::atomic::AtomicU64>,
+}
+
+impl Limit<'_> {
+    /// No limit.
+    pub(crate) const NONE: Limit<'static> = Limit {
+        fixed: f64::INFINITY,
+        rival: None,
+    };
+
+    /// The limit now (it only falls, and never below its final value).
+    fn get(&self) -> f64 {
+        let rival = self.rival.map_or(f64::INFINITY, |r| {
+            f64::from_bits(r.load(std::sync::atomic::Ordering::Relaxed))
+        });
+        self.fixed.min(rival)
+    }
 }
 
 impl SideInput<'_> {
@@ -340,19 +367,27 @@ enum Walk {
     Done(Box<Leg>, usize, Vec<Point>),
     /// No guaranteed path could be set up or checked toward this end.
     Failed(String),
-    /// The vertices travelled farther than [`SideInput::give_up_past`].
+    /// The vertices travelled farther than [`SideInput::limit`].
     GaveUp,
 }
 
 impl Staged {
     /// Builds the staged path of one side; `None` when its vertices
-    /// travel farther than [`SideInput::give_up_past`] (it was given up
-    /// there).
+    /// travel farther than [`SideInput::limit`] (it was given up there).
+    /// Beside the outcome, the largest travel at which the limit was
+    /// consulted (the peak): a side that failed with a peak within the
+    /// final limit would have failed under any limit the side could see.
     ///
     /// # Errors
     ///
     /// [`MorphError`] when even the disk route cannot finish (a bug).
-    pub(crate) fn build(inp: &SideInput<'_>) -> Result<Option<Staged>, MorphError> {
+    pub(crate) fn build(inp: &SideInput<'_>) -> (Result<Option<Staged>, MorphError>, f64) {
+        let mut peak = 0.0f64;
+        let outcome = Self::build_tracked(inp, &mut peak);
+        (outcome, peak)
+    }
+
+    fn build_tracked(inp: &SideInput<'_>, peak: &mut f64) -> Result<Option<Staged>, MorphError> {
         let n = inp.s.len();
         let goal_tris: &[[u32; 3]] = if check(inp.other, inp.t_start).is_ok() {
             inp.t_start
@@ -411,7 +446,7 @@ impl Staged {
             };
             let at_disk = matches!(mode, Mode::Disk { .. });
             let walked = walk(
-                inp, &x, &end, &tree, &mut cur, &mut order, floor, at_disk, &mut st,
+                inp, &x, &end, &tree, &mut cur, &mut order, floor, at_disk, &mut st, peak,
             )?;
             let (leg, applied, end_shape) = match walked {
                 Walk::Done(leg, applied, end_shape) => (*leg, applied, end_shape),
@@ -475,7 +510,7 @@ impl Staged {
             st.legs.len() as f64
         };
         // The last leg, to the other curve.
-        let Some(last) = last_leg(inp, &x, cur.triangles(), &mut st)? else {
+        let Some(last) = last_leg(inp, &x, cur.triangles(), &mut st, peak)? else {
             return Ok(None);
         };
         st.legs.push(last);
@@ -521,6 +556,7 @@ fn walk(
     floor: f64,
     at_disk: bool,
     st: &mut Staged,
+    peak: &mut f64,
 ) -> Result<Walk, MorphError> {
     let mut why = String::new();
     let travelled = st.mean_travel();
@@ -555,7 +591,9 @@ fn walk(
                 Ok(p) => p,
                 Err(e) => break Err(e),
             };
-            if travelled + leg.mean_travel > inp.give_up_past {
+            let partial = travelled + leg.mean_travel;
+            *peak = peak.max(partial);
+            if partial > inp.limit.get() {
                 return Ok(Walk::GaveUp);
             }
             let applied = if s < 1.0 || !at_disk {
@@ -589,18 +627,19 @@ fn walk(
 /// The last leg, from `x` to the other curve under `tris` (valid on both),
 /// with the requested path, or the guaranteed ones in turn when a sample
 /// fails the exact check; `None` when the side's vertices travel farther
-/// than [`SideInput::give_up_past`] along it.
+/// than [`SideInput::limit`] along it.
 fn last_leg(
     inp: &SideInput<'_>,
     x: &[Point],
     tris: &[[u32; 3]],
     st: &mut Staged,
+    peak: &mut f64,
 ) -> Result<Option<Leg>, MorphError> {
     let tree = DualTree::new(x.len(), tris).map_err(CompatibleError::from)?;
     let plan = inp.plan(x, inp.other, &tree)?;
     let mut why = String::new();
-    // The travel this leg may add before the side is given up.
-    let limit = inp.give_up_past - st.mean_travel();
+    // The travel before this leg, against the side's limit.
+    let base = st.mean_travel();
     // The straight path competes with the hybrid one on the last leg: a
     // winding or unwinding that straight lines cut across is often
     // shorter along the hybrid path. The one whose vertices travel less
@@ -618,8 +657,8 @@ fn last_leg(
         // and then the side travels past the limit anyway. So the limit
         // holds unless the kept leg unwinds.
         let lim = match rival {
-            Some(r) if !r.keeps_overlaps() => f64::INFINITY,
-            _ => limit,
+            Some(r) if !r.keeps_overlaps() => None,
+            _ => Some((&inp.limit, base, &mut *peak)),
         };
         match sample_leg(plan.clone(), path, x, tris, inp.max_step, rival, lim) {
             Ok(Sampled::CannotBeat) => break,
@@ -649,15 +688,8 @@ fn last_leg(
                     // this one wins unless it unwinds overlaps the first
                     // keeps, which only the whole first path can tell.
                     if !leg.keeps_overlaps()
-                        && let Ok(Sampled::Done(f, _)) = sample_leg(
-                            plan.clone(),
-                            first,
-                            x,
-                            tris,
-                            inp.max_step,
-                            None,
-                            f64::INFINITY,
-                        )
+                        && let Ok(Sampled::Done(f, _)) =
+                            sample_leg(plan.clone(), first, x, tris, inp.max_step, None, None)
                         && f.beats(&leg)
                     {
                         return Ok(None);
@@ -703,8 +735,9 @@ enum Sampled {
 
 /// Samples the whole of a leg with `path`, checking every sample exactly;
 /// stops as soon as it cannot beat `rival` any more (its travel only
-/// grows and its least turning only falls) or its mean vertex travel
-/// passes `limit`.
+/// grows and its least turning only falls) or, with `limit` = (the side's
+/// limit, the travel before this leg, the side's peak), the side's mean
+/// vertex travel passes the limit.
 fn sample_leg(
     plan: Compatible,
     path: ThirdVertexPath,
@@ -712,7 +745,7 @@ fn sample_leg(
     tris: &[[u32; 3]],
     max_step: f64,
     rival: Option<&Leg>,
-    limit: f64,
+    mut limit: Option<(&Limit<'_>, f64, &mut f64)>,
 ) -> Result<Sampled, String> {
     let steps = (1.0 / LEG_STEP).round() as usize;
     let mut leg = Leg::start(plan, path);
@@ -730,8 +763,12 @@ fn sample_leg(
         if rival.is_some_and(|b| leg.cannot_beat(b)) {
             return Ok(Sampled::CannotBeat);
         }
-        if leg.mean_travel > limit {
-            return Ok(Sampled::PassedLimit);
+        if let Some((lim, base, peak)) = limit.as_mut() {
+            let partial = *base + leg.mean_travel;
+            **peak = peak.max(partial);
+            if partial > lim.get() {
+                return Ok(Sampled::PassedLimit);
+            }
         }
     }
     Ok(Sampled::Done(Box::new(leg), repairs))
@@ -826,8 +863,9 @@ mod tests {
             intermediate,
             floor: 0.25 * min_angle(a, ta).min(min_angle(b, tb)),
             max_step: 0.05,
-            give_up_past: f64::INFINITY,
+            limit: Limit::NONE,
         })
+        .0
         .unwrap()
         .unwrap()
     }

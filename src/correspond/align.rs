@@ -43,6 +43,145 @@ pub fn align(a: &[Point], b: &[Point]) -> (Vec<Point>, Vec<Point>, usize) {
     align_small_to_large(a, b)
 }
 
+/// A vertex where the outline turns by at least this much (either way) is
+/// a corner: 60°.
+const CORNER_TURN: f64 = std::f64::consts::FRAC_PI_3;
+
+/// Most corners matched: past this an outline has no few features that
+/// stand out.
+const MOST_CORNERS: usize = 16;
+
+/// [`align`] with the corners matched: when both curves have the same
+/// number of corners (between 2 and 16; a corner turns by 60° or more),
+/// each corner of one is matched to a corner of the other turning the same
+/// way, in order, and the arc length between consecutive corners is
+/// matched piece by piece (so a strip's long and short edges, or a
+/// letter's strokes, correspond whatever their share of the perimeter).
+/// Of the cyclic matchings of the corners the one that stretches the
+/// pieces between corners least wins (the sum of |ln| of the ratios of
+/// their shares of the perimeter, to a tenth), then the best score as in
+/// [`align`]. `None` when the corners do not match up.
+/// Symmetric, as [`align`].
+pub fn align_corners(a: &[Point], b: &[Point]) -> Option<(Vec<Point>, Vec<Point>, usize)> {
+    let lex = crate::geom::polygon::lex_key;
+    let swap = match a.len().cmp(&b.len()) {
+        std::cmp::Ordering::Less => false,
+        std::cmp::Ordering::Greater => true,
+        std::cmp::Ordering::Equal => lex(a) > lex(b),
+    };
+    if swap {
+        let (b2, a2, k) = corners_small_to_large(b, a)?;
+        let n = a2.len();
+        return Some((a2, b2, (n - k) % n));
+    }
+    corners_small_to_large(a, b)
+}
+
+/// The signed turning at each corner of `p` (module docs), by vertex.
+fn corners(p: &[Point]) -> Vec<(usize, f64)> {
+    let n = p.len();
+    (0..n)
+        .filter_map(|i| {
+            let (u, v) = (p[i] - p[(i + n - 1) % n], p[(i + 1) % n] - p[i]);
+            let turn = u.perp_dot(v).atan2(u.dot(v));
+            (turn.abs() >= CORNER_TURN).then_some((i, turn))
+        })
+        .collect()
+}
+
+/// [`align_corners`] with `small` (m vertices) against `large` (n ≥ m).
+fn corners_small_to_large(
+    small: &[Point],
+    large: &[Point],
+) -> Option<(Vec<Point>, Vec<Point>, usize)> {
+    let (ca, cb) = (corners(small), corners(large));
+    let f = ca.len();
+    if f < 2 || f != cb.len() || f > MOST_CORNERS {
+        return None;
+    }
+    let n = large.len();
+    let alpha = positions(small);
+    let beta = positions(large);
+    let xs: Vec<f64> = ca.iter().map(|&(i, _)| alpha[i]).collect();
+    let mut best: Option<(f64, f64, Vec<Point>, usize)> = None;
+    for r in 0..f {
+        let matched = |i: usize| cb[(i + r) % f];
+        if (0..f).any(|i| (ca[i].1 > 0.0) != (matched(i).1 > 0.0)) {
+            continue;
+        }
+        // The corners' places on the large curve, unwrapped to increase.
+        let mut ys: Vec<f64> = (0..f).map(|i| beta[matched(i).0]).collect();
+        for i in 1..f {
+            while ys[i] <= ys[i - 1] {
+                ys[i] += 1.0;
+            }
+        }
+        // The piecewise-linear map of small's fractions onto large's,
+        // through the matched corners (period 1 on both sides), unwrapped
+        // so that it increases from small's vertex 0 on.
+        let warp = |x: f64| -> f64 {
+            let (x, lift) = if x < xs[0] { (x + 1.0, 1.0) } else { (x, 0.0) };
+            let i = xs.partition_point(|&v| v <= x).max(1) - 1;
+            let (x0, y0) = (xs[i], ys[i]);
+            let (x1, y1) = if i + 1 < f {
+                (xs[i + 1], ys[i + 1])
+            } else {
+                (xs[0] + 1.0, ys[0] + 1.0)
+            };
+            y0 + (x - x0) / (x1 - x0) * (y1 - y0) - lift
+        };
+        let w: Vec<f64> = alpha.iter().map(|&x| warp(x)).collect();
+        // Large's vertex nearest to where small's vertex 0 lands.
+        let w0 = w[0].rem_euclid(1.0);
+        let cyclic = |d: f64| (d + 0.5).rem_euclid(1.0) - 0.5;
+        let k = (0..n)
+            .min_by(|&i, &j| {
+                cyclic(beta[i] - w0)
+                    .abs()
+                    .total_cmp(&cyclic(beta[j] - w0).abs())
+            })
+            .unwrap_or(0);
+        let d0 = cyclic(w0 - beta[k]);
+        let rel: Vec<f64> = w
+            .iter()
+            .map(|&x| (x - w[0] + d0).clamp(0.0, 1.0 - f64::EPSILON))
+            .collect();
+        // How much the matching stretches the pieces between corners: the
+        // sum of |ln| of each piece's share of the perimeter on one curve
+        // over its share on the other. A strip's long edge matched to a cap
+        // stretches a lot; the score only breaks near-ties.
+        let stretch: f64 = (0..f)
+            .map(|i| {
+                let next = (i + 1) % f;
+                let on_small = (xs[next] - xs[i]).rem_euclid(1.0);
+                let on_large = if next == 0 {
+                    ys[0] + 1.0 - ys[i]
+                } else {
+                    ys[next] - ys[i]
+                };
+                (on_small.max(f64::MIN_POSITIVE) / on_large.max(f64::MIN_POSITIVE))
+                    .ln()
+                    .abs()
+            })
+            .sum();
+        let padded = pad(small, &rel, &beta, k);
+        if !(0..n).all(|i| padded[i] != padded[(i + 1) % n]) {
+            continue;
+        }
+        let score = residual(&padded, large, k);
+        let better = best.as_ref().is_none_or(|b| {
+            // Stretch first (to a tenth), then the outline score.
+            let (s0, s1) = ((stretch * 10.0).round(), (b.0 * 10.0).round());
+            s0 < s1 || (s0 == s1 && score < b.1)
+        });
+        if better {
+            best = Some((stretch, score, padded, k));
+        }
+    }
+    let (_, _, padded, k) = best?;
+    Some((padded, large.to_vec(), k))
+}
+
 /// Fractions of the perimeter at each vertex, from vertex 0.
 fn positions(p: &[Point]) -> Vec<f64> {
     let n = p.len();
@@ -213,6 +352,71 @@ mod tests {
         (0..n)
             .map(|i| Point::from_angle(phase + std::f64::consts::TAU * i as f64 / n as f64) * r)
             .collect()
+    }
+
+    /// A strip along an arc of `turn` radians (its centre line from angle
+    /// 0), `m` stations per long edge: outer edge out, inner edge back, so
+    /// it has four corners (two at each cap).
+    fn arc_strip(m: usize, turn: f64, width: f64) -> Vec<Point> {
+        let at = |i: usize, r: f64| Point::from_angle(turn * i as f64 / (m - 1) as f64) * r;
+        let outer = (0..m).map(|i| at(i, 1.0 + width / 2.0));
+        let inner = (0..m).rev().map(|i| at(i, 1.0 - width / 2.0));
+        outer.chain(inner).collect()
+    }
+
+    #[test]
+    fn corners_match_corners_and_the_pieces_between_them() {
+        // Long edges of 20 and 60 stations: the caps are at different
+        // shares of the perimeter on the two strips.
+        let a = arc_strip(20, 4.0, 0.3);
+        let b = arc_strip(60, 6.0, 0.5);
+        assert_eq!(corners(&a).len(), 4);
+        assert_eq!(corners(&b).len(), 4);
+        let (a2, b2, k) = align_corners(&a, &b).expect("the corners match up");
+        let n = b.len();
+        assert_eq!((a2.len(), b2.len()), (n, n));
+        assert_eq!(b2, b);
+        // The originals stay, in order.
+        let originals: Vec<Point> = a2.iter().copied().filter(|p| a.contains(p)).collect();
+        assert_eq!(originals, a);
+        // Every corner of a lands on a corner of b, outer edge on outer
+        // edge: vertex 0 (the outer edge's start) on b's vertex 0.
+        for (i, _) in corners(&a) {
+            let at = a2.iter().position(|p| *p == a[i]).unwrap();
+            let j = (at + k) % n;
+            assert!(
+                corners(&b).iter().any(|c| c.0 == j),
+                "corner {i} of a on {j} of b"
+            );
+        }
+        assert_eq!(k, 0);
+        // Symmetric: the other order pairs the same vertices.
+        let (b3, a3, k3) = align_corners(&b, &a).unwrap();
+        assert_eq!((b3, a3), (b2, a2));
+        assert_eq!((k + k3) % n, 0);
+        // The outline rule, by perimeter share alone, puts a's caps
+        // elsewhere on b.
+        let (o2, _, ko) = align(&a, &b);
+        let cap = o2.iter().position(|p| *p == a[20]).unwrap();
+        assert!(!corners(&b).iter().any(|c| c.0 == (cap + ko) % n));
+    }
+
+    #[test]
+    fn curves_whose_corners_differ_have_no_corner_match() {
+        let triangle = [
+            Point::new(0.0, 0.0),
+            Point::new(4.0, 0.0),
+            Point::new(1.0, 3.0),
+        ];
+        let square = [
+            Point::new(0.0, 0.0),
+            Point::new(1.0, 0.0),
+            Point::new(1.0, 1.0),
+            Point::new(0.0, 1.0),
+        ];
+        assert!(align_corners(&triangle, &square).is_none());
+        // A circle has no corner at all.
+        assert!(align_corners(&circle(40, 0.0, 1.0), &circle(50, 0.0, 1.0)).is_none());
     }
 
     #[test]

@@ -204,9 +204,10 @@ impl Intermediate {
 pub enum Correspondence {
     /// Vertex 0 matches vertex 0.
     Identity,
-    /// Plan the morph with the outline rule and with the min-flips rule
-    /// and keep the one whose vertices travel less (docs/design.md §7b:
-    /// choose by what the user sees, with a trial morph); costs two plans.
+    /// Plan the morph with the outline rule, the min-flips rule and, when
+    /// the curves' corners match up, the corners rule, and keep the plan
+    /// whose vertices travel less (docs/design.md §7b: choose by what the
+    /// user sees, with a trial morph).
     #[default]
     Best,
     /// The pivot vertices (Mukherjee & Gopi §6.1) of the two triangulations match.
@@ -223,12 +224,18 @@ pub enum Correspondence {
     /// with the inserted vertices placed where the other curve's vertices
     /// are (original vertices stay exact). What the user sees corresponds.
     Outline,
+    /// As [`Correspondence::Outline`], with the corners of the two curves
+    /// matched in order and the arc length between them matched piece by
+    /// piece (a strip's long and short edges correspond); the outline rule
+    /// when the curves do not have the same corners.
+    Corners,
 }
 
 impl Correspondence {
     /// All rules, in CLI order.
-    pub const ALL: [Correspondence; 6] = [
+    pub const ALL: [Correspondence; 7] = [
         Correspondence::Outline,
+        Correspondence::Corners,
         Correspondence::MinFlips,
         Correspondence::Pivot,
         Correspondence::Shape,
@@ -244,6 +251,7 @@ impl Correspondence {
             Correspondence::MinFlips => "min-flips",
             Correspondence::Shape => "shape",
             Correspondence::Outline => "outline",
+            Correspondence::Corners => "corners",
             Correspondence::Best => "best",
         }
     }
@@ -293,6 +301,8 @@ pub fn choose_shift(
             (spine(b, tb) + n - spine(a, ta)) % n
         }
         Correspondence::Outline => crate::correspond::align(a, b).2,
+        Correspondence::Corners => crate::correspond::align_corners(a, b)
+            .map_or_else(|| crate::correspond::align(a, b).2, |(_, _, k)| k),
         Correspondence::Shape => {
             let geo = shape_cost_per_shift(a, b);
             (0..n)
@@ -479,8 +489,21 @@ pub(crate) fn prepare(
 ) -> Result<Prepared, CurveMorphError> {
     let (a, b) = (tri.a, tri.b);
     let mut fallbacks = Vec::new();
-    if counts == Counts::Insert && correspondence == Correspondence::Outline {
-        let (pa, pb, k) = crate::correspond::align(a, b);
+    let by_outline = matches!(
+        correspondence,
+        Correspondence::Outline | Correspondence::Corners
+    );
+    if counts == Counts::Insert && by_outline {
+        let by_corners = (correspondence == Correspondence::Corners)
+            .then(|| crate::correspond::align_corners(a, b))
+            .flatten();
+        if correspondence == Correspondence::Corners && by_corners.is_none() {
+            fallbacks.push(Fallback::new(
+                "matched the vertices by the outline rule",
+                "the two curves' corners do not match up (not the same number of corners turning the same ways, between 2 and 16)",
+            ));
+        }
+        let (pa, pb, k) = by_corners.unwrap_or_else(|| crate::correspond::align(a, b));
         match rayon::join(|| tri.of(&pa), || tri.of(&pb)) {
             (Ok(ta), Ok(tb)) => {
                 return Ok(Prepared {
@@ -782,7 +805,19 @@ pub(crate) fn plan(
     let tri = Triangulations::new(a, b, options.quality);
     type Planned = (Prepared, Sides);
     let rules: &[Correspondence] = if options.correspondence == Correspondence::Best {
-        &[Correspondence::Outline, Correspondence::MinFlips]
+        // The corners rule only where it differs from the outline rule.
+        if crate::correspond::align_corners(a, b).is_some() {
+            // Corners first: where the corners match, its plan usually
+            // travels least (the order only decides how early the other
+            // plans are given up, and exact ties).
+            &[
+                Correspondence::Corners,
+                Correspondence::Outline,
+                Correspondence::MinFlips,
+            ]
+        } else {
+            &[Correspondence::Outline, Correspondence::MinFlips]
+        }
     } else {
         std::slice::from_ref(&options.correspondence)
     };
@@ -810,19 +845,27 @@ pub(crate) fn plan(
         Some((q, shift))
     };
     let (p0, k0) = prepared(rules[0])?;
-    // The first plan in full; beside it, the other candidates are set up
+    let mut tried = Vec::new();
+    // A common triangulation near the first rule's shift, when there is
+    // one, leads: it needs no flip, so its plan is cheap and usually
+    // travels least, and the plans after it are then given up early.
+    let (lead, lead_k, own0) = match common(&p0, k0, &mut tried) {
+        Some((q, shift)) => (q, shift, Some((p0, k0))),
+        None => (p0, k0, None),
+    };
+    let (a0, b0) = (&lead.a, &lead.b);
+    // The lead plan in full; beside it, the other candidates are set up
     // (shifts, common triangulations), in a fixed order.
     let (first, others) = sides_beside(
-        &p0,
-        k0,
+        &lead,
+        lead_k,
         options,
         f64::INFINITY,
-        || -> Result<Vec<(Prepared, usize)>, CurveMorphError> {
-            let mut tried = Vec::new();
-            let mut v: Vec<(Prepared, usize)> = common(&p0, k0, &mut tried).into_iter().collect();
+        move || -> Result<Vec<(Prepared, usize)>, CurveMorphError> {
+            let mut v: Vec<(Prepared, usize)> = own0.into_iter().collect();
             for &rule in &rules[1..] {
                 let (p, k) = prepared(rule)?;
-                if (&p.a, &p.b) != (&p0.a, &p0.b) {
+                if (&p.a, &p.b) != (a0, b0) {
                     tried.clear();
                 }
                 let c = common(&p, k, &mut tried);
@@ -844,7 +887,7 @@ pub(crate) fn plan(
     // The first plan that travels least.
     let best = others
         .into_iter()
-        .fold((bound, (p0, first)), |best, candidate| {
+        .fold((bound, (lead, first)), |best, candidate| {
             let t = travel(&candidate.1);
             if t < best.0 { (t, candidate) } else { best }
         });

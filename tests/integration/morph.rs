@@ -272,12 +272,12 @@ fn motion_stays_within_its_measured_bounds_on_the_motion_pairs() {
         (
             "spiral-strip-720deg-n200.json",
             "spiral-strip-1080deg-n400.json",
-            14.0,
+            3.1,
         ),
         (
             "spiral-strip-540deg-n120.json",
             "spiral-strip-900deg-n600.json",
-            5.0,
+            3.1,
         ),
         ("blob-n64.json", "spiral-strip-1080deg-n400.json", 4.0),
     ];

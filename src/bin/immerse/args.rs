@@ -429,6 +429,8 @@ pub(crate) enum IntermediateArg {
 pub(crate) enum CorrespondenceArg {
     /// Match the outlines by arc length up to a rotation and scale; inserted vertices go where the other curve's are.
     Outline,
+    /// As outline, with the curves' corners (turns of 60° or more) matched in order and the arc between them piece by piece.
+    Corners,
     /// The cyclic shift with the fewest edge flips between the triangulations.
     MinFlips,
     /// Match the pivot vertices of the two triangulations (Mukherjee & Gopi §6.1).
@@ -437,7 +439,7 @@ pub(crate) enum CorrespondenceArg {
     Shape,
     /// Vertex 0 matches vertex 0.
     Identity,
-    /// Plan with the outline and min-flips rules; keep the one whose vertices travel less.
+    /// Plan with the outline, min-flips and (when the corners match up) corners rules; keep the one whose vertices travel less.
     Best,
 }
 

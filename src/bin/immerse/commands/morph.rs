@@ -34,6 +34,7 @@ impl From<CorrespondenceArg> for Correspondence {
         match c {
             CorrespondenceArg::Shape => Correspondence::Shape,
             CorrespondenceArg::Outline => Correspondence::Outline,
+            CorrespondenceArg::Corners => Correspondence::Corners,
             CorrespondenceArg::MinFlips => Correspondence::MinFlips,
             CorrespondenceArg::Pivot => Correspondence::Pivot,
             CorrespondenceArg::Identity => Correspondence::Identity,

@@ -733,13 +733,15 @@ const COMMON_REACH: [(usize, usize); 1] = [(1500, 1)];
 /// and always along a cheaper way than a flip route). Improved by max–min
 /// flips that keep it common unless `quality` is [`Quality::Any`]. Shifts
 /// in `tried` (searched already on the same curves) are skipped; the ones
-/// searched here are added to it.
+/// searched here are added to it. With `all_at_once` every shift is
+/// searched side by side (when the cores have nothing else to do).
 fn common_near(
     a: &[Point],
     b: &[Point],
     k: usize,
     quality: Quality,
     tried: &mut Vec<usize>,
+    all_at_once: bool,
 ) -> Option<(usize, Triangles, Triangles)> {
     let n = a.len();
     let (_, reach) = COMMON_REACH.iter().find(|&&(most, _)| n <= most)?;
@@ -762,27 +764,37 @@ fn common_near(
         || crate::immersion::CurveMasks::new(base),
         || crate::immersion::CurveMasks::new(other),
     );
-    for shift in shifts {
-        tried.push(a_to_b(shift));
+    // A common triangulation at `shift` (base's labels), if any.
+    let at = |shift: usize| -> Option<Triangles> {
         // other[(v + shift) % n] corresponds to base[v].
         let other_in_base: Vec<Point> = (0..n).map(|i| other[(i + shift) % n]).collect();
         let curves = [base, &other_in_base[..]];
         let masks = vec![base_masks.clone(), other_masks.rotated(shift)];
-        let Some(t) = crate::immersion::common_triangulation_with(&curves, masks) else {
-            continue;
-        };
-        let t = match quality {
+        let t = crate::immersion::common_triangulation_with(&curves, masks)?;
+        Some(match quality {
             Quality::Any => t,
             _ => crate::quality::improve_common(&curves, t),
-        };
-        let t_other = shift_triangles(n, &t, (n - shift) % n);
-        return Some(if swap {
-            ((n - shift) % n, t_other, t)
-        } else {
-            (shift, t, t_other)
-        });
-    }
-    None
+        })
+    };
+    // Nearest first; all at once (side by side) when asked, else one by
+    // one until one is found.
+    let found = if all_at_once {
+        tried.extend(shifts.iter().map(|&s| a_to_b(s)));
+        let each: Vec<Option<Triangles>> = shifts.par_iter().map(|&s| at(s)).collect();
+        shifts.iter().zip(each).find_map(|(&s, t)| Some((s, t?)))
+    } else {
+        shifts.iter().find_map(|&s| {
+            tried.push(a_to_b(s));
+            Some((s, at(s)?))
+        })
+    };
+    let (shift, t) = found?;
+    let t_other = shift_triangles(n, &t, (n - shift) % n);
+    Some(if swap {
+        ((n - shift) % n, t_other, t)
+    } else {
+        (shift, t, t_other)
+    })
 }
 
 /// The curves prepared and both sides planned as the options ask: one
@@ -832,8 +844,12 @@ pub(crate) fn plan(
     };
     // The same curves with a common triangulation near the shift `k`
     // (skipping the shifts `tried` on them).
-    let common = |p: &Prepared, k: usize, tried: &mut Vec<usize>| -> Option<(Prepared, usize)> {
-        let (shift, ta, tb) = common_near(&p.a, &p.b, k, options.quality, tried)?;
+    let common = |p: &Prepared,
+                  k: usize,
+                  tried: &mut Vec<usize>,
+                  all_at_once: bool|
+     -> Option<(Prepared, usize)> {
+        let (shift, ta, tb) = common_near(&p.a, &p.b, k, options.quality, tried, all_at_once)?;
         let q = Prepared {
             a: p.a.clone(),
             b: p.b.clone(),
@@ -849,7 +865,7 @@ pub(crate) fn plan(
     // A common triangulation near the first rule's shift, when there is
     // one, leads: it needs no flip, so its plan is cheap and usually
     // travels least, and the plans after it are then given up early.
-    let (lead, lead_k, own0) = match common(&p0, k0, &mut tried) {
+    let (lead, lead_k, own0) = match common(&p0, k0, &mut tried, true) {
         Some((q, shift)) => (q, shift, Some((p0, k0))),
         None => (p0, k0, None),
     };
@@ -868,7 +884,7 @@ pub(crate) fn plan(
                 if (&p.a, &p.b) != (a0, b0) {
                     tried.clear();
                 }
-                let c = common(&p, k, &mut tried);
+                let c = common(&p, k, &mut tried, false);
                 v.push((p, k));
                 v.extend(c);
             }

@@ -3,6 +3,11 @@
 //! Exit codes are decided here only: 0 success, 1 a negative answer (for
 //! example a curve that is not self-overlapping), 2 bad input or usage.
 
+/// mimalloc instead of the system allocator: `morph` at 2,000 vertices
+/// takes a fifth less time (docs/benchmarks.md).
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 mod args;
 mod commands;
 mod output;

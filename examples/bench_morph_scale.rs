@@ -1,7 +1,8 @@
 //! How `immerse morph` scales with the vertex count: the CLI with its
 //! default options and 60 frames (written as JSON), on two pairs, at
 //! n = 400, 1000, 2000 and 5000 (or `--sizes`). Each row gives the median
-//! wall time of `--runs` runs (default 3), the median CPU time (user +
+//! wall time of `--runs` runs (default 7: the small rows vary by a few
+//! milliseconds from run to run), the median CPU time (user +
 //! system, all threads: on a machine shared with other jobs the wall time
 //! varies far more) and the peak resident memory of the process, and, on
 //! the same pair in the same run, flubber's time and
@@ -200,7 +201,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Some(s) => s.split(',').map(str::parse).collect::<Result<_, _>>()?,
         None => vec![400, 1000, 2000, 5000],
     };
-    let runs: usize = value("--runs").map_or(Ok(3), |r| r.parse())?;
+    let runs: usize = value("--runs").map_or(Ok(7), |r| r.parse())?;
     let exe_dir = std::env::current_exe()?
         .parent()
         .and_then(Path::parent)

@@ -13,7 +13,7 @@
 # With --baseline, the scale rows (and with --morph-scale the morph rows)
 # also time that earlier `immerse` binary (up to 10,000 points for check;
 # build it from an older commit).
-# --morph-scale takes a few minutes more (n = 5000, three runs per row) and
+# --morph-scale takes a few minutes more (n = 5000, seven runs per row) and
 # needs node and npm for the flubber columns (without them they say "not
 # run").
 # The criterion benches (`cargo bench`) measure the same code with

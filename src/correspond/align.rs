@@ -12,6 +12,7 @@
 //! the user sees it). The best candidate wins.
 
 use crate::geom::Point;
+use rayon::prelude::*;
 
 /// Most candidate shifts scored in full; more vertices are first scored on
 /// every `stride`-th shift and refined around the best.
@@ -210,9 +211,15 @@ fn align_small_to_large(small: &[Point], large: &[Point]) -> (Vec<Point>, Vec<Po
         residual(&padded, large, k)
     };
     let stride = n.div_ceil(COARSE_SHIFTS).max(1);
+    // Scored side by side, then the first least score in order.
+    let coarse: Vec<(usize, f64)> = (0..n)
+        .step_by(stride)
+        .collect::<Vec<_>>()
+        .par_iter()
+        .map(|&k| (k, score(k)))
+        .collect();
     let mut best = (f64::INFINITY, 0usize);
-    for k in (0..n).step_by(stride) {
-        let s = score(k);
+    for (k, s) in coarse {
         if s < best.0 {
             best = (s, k);
         }

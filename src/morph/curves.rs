@@ -503,7 +503,20 @@ pub(crate) fn prepare(
                 "the two curves' corners do not match up (not the same number of corners turning the same ways, between 2 and 16)",
             ));
         }
-        let (pa, pb, k) = by_corners.unwrap_or_else(|| crate::correspond::align(a, b));
+        let (pa, pb, k) = by_corners.unwrap_or_else(|| {
+            // With equal counts nothing is inserted and the curves
+            // themselves are triangulated: that starts beside the
+            // alignment.
+            let (aligned, ()) = rayon::join(
+                || crate::correspond::align(a, b),
+                || {
+                    if a.len() == b.len() {
+                        rayon::join(|| tri.of(a).ok(), || tri.of(b).ok());
+                    }
+                },
+            );
+            aligned
+        });
         match rayon::join(|| tri.of(&pa), || tri.of(&pb)) {
             (Ok(ta), Ok(tb)) => {
                 return Ok(Prepared {

@@ -27,21 +27,32 @@ const SCORE_SAMPLES: usize = 512;
 /// gets vertices inserted on its edges; original vertices stay exact and in
 /// order. Symmetric: `align(b, a)` pairs the same vertices.
 pub fn align(a: &[Point], b: &[Point]) -> (Vec<Point>, Vec<Point>, usize) {
-    // The curve with fewer vertices is the one that gets insertions; ties
-    // go by coordinates so that both argument orders agree.
+    if small_second(a, b) {
+        back(align_small_to_large(b, a))
+    } else {
+        align_small_to_large(a, b)
+    }
+}
+
+/// Two curves with equal counts and the shift that pairs them.
+type Pairing = (Vec<Point>, Vec<Point>, usize);
+
+/// Whether `b` is the curve that gets insertions: the one with fewer
+/// vertices, ties going by coordinates so that both argument orders agree.
+fn small_second(a: &[Point], b: &[Point]) -> bool {
     let lex = crate::geom::polygon::lex_key;
-    let swap = match a.len().cmp(&b.len()) {
+    match a.len().cmp(&b.len()) {
         std::cmp::Ordering::Less => false,
         std::cmp::Ordering::Greater => true,
         std::cmp::Ordering::Equal => lex(a) > lex(b),
-    };
-    if swap {
-        let (b2, a2, k) = align_small_to_large(b, a);
-        // b2[i] matches a2[(i + k) % n]: a2[j] matches b2[(j + n − k) % n].
-        let n = a2.len();
-        return (a2, b2, (n - k) % n);
     }
-    align_small_to_large(a, b)
+}
+
+/// The pairing `(b2, a2, k)` of `(b, a)` as one of `(a, b)`: `b2[i]`
+/// matches `a2[(i + k) % n]`, so `a2[j]` matches `b2[(j + n − k) % n]`.
+fn back((b2, a2, k): Pairing) -> Pairing {
+    let n = a2.len();
+    (a2, b2, (n - k) % n)
 }
 
 /// A vertex where the outline turns by at least this much (either way) is
@@ -63,19 +74,12 @@ const MOST_CORNERS: usize = 16;
 /// their shares of the perimeter, to a tenth), then the best score as in
 /// [`align`]. `None` when the corners do not match up.
 /// Symmetric, as [`align`].
-pub fn align_corners(a: &[Point], b: &[Point]) -> Option<(Vec<Point>, Vec<Point>, usize)> {
-    let lex = crate::geom::polygon::lex_key;
-    let swap = match a.len().cmp(&b.len()) {
-        std::cmp::Ordering::Less => false,
-        std::cmp::Ordering::Greater => true,
-        std::cmp::Ordering::Equal => lex(a) > lex(b),
-    };
-    if swap {
-        let (b2, a2, k) = corners_small_to_large(b, a)?;
-        let n = a2.len();
-        return Some((a2, b2, (n - k) % n));
+pub fn align_corners(a: &[Point], b: &[Point]) -> Option<Pairing> {
+    if small_second(a, b) {
+        corners_small_to_large(b, a).map(back)
+    } else {
+        corners_small_to_large(a, b)
     }
-    corners_small_to_large(a, b)
 }
 
 /// The signed turning at each corner of `p` (module docs), by vertex.

@@ -356,3 +356,41 @@ fn the_result_does_not_depend_on_the_number_of_cores() {
         }
     }
 }
+
+/// The corners rule pairs the strips' edges piece by piece: spiral strips
+/// wound 720° and 1080° then share a triangulation (no flip) and every
+/// frame is an immersion; swapping the curves pairs the same vertices.
+/// Curves whose corners do not match up fall back to the outline rule,
+/// and say so.
+#[test]
+fn the_corners_rule_matches_strip_edges_and_says_when_it_cannot() {
+    use immerse::morph::Correspondence;
+    let options = CurveMorphOptions::DEFAULT.with_correspondence(Correspondence::Corners);
+    let (a, b) = (
+        load("spiral-strip-720deg-n200.json"),
+        load("spiral-strip-1080deg-n400.json"),
+    );
+    let (report, m) = morph_curves(&a.points, &b.points, &fractions(21), &options).unwrap();
+    assert_eq!(report.flips, 0, "{report:?}");
+    assert!(report.fallbacks.is_empty(), "{:?}", report.fallbacks);
+    for f in &m.frames {
+        assert!(check(&f.points, &f.triangles).is_ok(), "t = {}", f.t);
+    }
+    let (back, _) = morph_curves(&b.points, &a.points, &fractions(21), &options).unwrap();
+    assert_eq!((report.shift + back.shift) % report.n, 0);
+    let (t, s) = (load("triangle.json"), load("square.json"));
+    let (report, m) = morph_curves(&t.points, &s.points, &fractions(11), &options).unwrap();
+    assert!(
+        report
+            .fallbacks
+            .iter()
+            .any(|f| f.what.contains("outline rule") && f.why.contains("corners")),
+        "{:?}",
+        report.fallbacks
+    );
+    assert!(
+        m.frames
+            .iter()
+            .all(|f| check(&f.points, &f.triangles).is_ok())
+    );
+}

@@ -602,7 +602,9 @@ const SAMPLES_PER_DIAGONAL: f64 = 32.0;
 
 /// Builds both sides for the shift `k` and picks the one to use. On the
 /// target route a side is given up once its vertices travel farther than
-/// `give_up_past` (a plan already made travels less).
+/// `give_up_past` (a plan already made travels less) or than the other
+/// side when that one finished (the two race; what is kept does not
+/// depend on which finishes first).
 pub(crate) fn sides(
     p: &Prepared,
     k: usize,

@@ -785,11 +785,7 @@ fn common_near(
         let other_in_base: Vec<Point> = (0..n).map(|i| other[(i + shift) % n]).collect();
         let curves = [base, &other_in_base[..]];
         let masks = vec![base_masks.clone(), other_masks.rotated(shift)];
-        let t = crate::immersion::common_triangulation_with(&curves, masks)?;
-        Some(match quality {
-            Quality::Any => t,
-            _ => crate::quality::improve_common(&curves, t),
-        })
+        crate::immersion::common_triangulation_with(&curves, masks)
     };
     // Nearest first; all at once (side by side) when asked, else one by
     // one until one is found.
@@ -804,6 +800,14 @@ fn common_near(
         })
     };
     let (shift, t) = found?;
+    // Improved only at the shift kept.
+    let t = match quality {
+        Quality::Any => t,
+        _ => {
+            let other_in_base: Vec<Point> = (0..n).map(|i| other[(i + shift) % n]).collect();
+            crate::quality::improve_common(&[base, &other_in_base[..]], t)
+        }
+    };
     let t_other = shift_triangles(n, &t, (n - shift) % n);
     Some(if swap {
         ((n - shift) % n, t_other, t)

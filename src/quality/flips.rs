@@ -98,7 +98,12 @@ pub(crate) fn improve_common(curves: &[&[Point]], triangles: Vec<[u32; 3]>) -> V
     {
         return triangles;
     }
+    // A triangle's value is computed from one fixed rotation of its
+    // corners, so that it is the same number whichever quad asks: with
+    // values that depend on the order, rounding could make a flip and its
+    // reverse both look better, and the loop would not end.
     let worst = |t: [u32; 3]| {
+        let t = crate::flip::canonical(t);
         curves
             .iter()
             .map(|c| {

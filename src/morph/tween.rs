@@ -110,6 +110,20 @@ impl Tween {
                         ),
                     ));
                 }
+                if options.quality != maxmin {
+                    for intermediate in [options.intermediate, other] {
+                        retries.push((
+                            options
+                                .with_correspondence(min_flips)
+                                .with_intermediate(intermediate)
+                                .with_quality(maxmin),
+                            format!(
+                                "matched the vertices by the min-flips rule and used the {} intermediate and the max–min-angle triangulations",
+                                intermediate.as_str()
+                            ),
+                        ));
+                    }
+                }
             }
             for (retry, what) in retries {
                 let Ok((p, s)) = plan(a, b, &retry) else {

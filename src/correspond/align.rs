@@ -59,6 +59,15 @@ fn back((b2, a2, k): Pairing) -> Pairing {
 /// a corner: 60°.
 const CORNER_TURN: f64 = std::f64::consts::FRAC_PI_3;
 
+/// A stretch of outline this short (as a share of the perimeter) that
+/// turns by at least [`ROUNDED_TURN`] is a rounded corner, such as a
+/// ribbon's rounded cap: 3%.
+const ROUNDED_SPAN: f64 = 0.03;
+
+/// Least turning of a rounded corner within [`ROUNDED_SPAN`]: 120°, so
+/// that a wide loop of the outline (a ribbon's fold) is not one.
+const ROUNDED_TURN: f64 = 8.0 * std::f64::consts::PI / 9.0;
+
 /// Most corners matched: past this an outline has no few features that
 /// stand out.
 const MOST_CORNERS: usize = 16;
@@ -69,37 +78,139 @@ const MOST_CORNERS: usize = 16;
 /// way, in order, and the arc length between consecutive corners is
 /// matched piece by piece (so a strip's long and short edges, or a
 /// letter's strokes, correspond whatever their share of the perimeter).
+/// Where the sharp corners do not match up, rounded corners are tried the
+/// same way: stretches of at most 3% of the perimeter turning by 120° or
+/// more, such as the rounded caps of a drawn ribbon, each placed at the
+/// middle of its turning.
 /// Of the cyclic matchings of the corners the one that stretches the
 /// pieces between corners least wins (the sum of |ln| of the ratios of
 /// their shares of the perimeter, to a tenth), then the best score as in
-/// [`align`]. `None` when the corners do not match up.
+/// [`align`]. `None` when neither kind of corner matches up.
 /// Symmetric, as [`align`].
 pub fn align_corners(a: &[Point], b: &[Point]) -> Option<Pairing> {
-    if small_second(a, b) {
-        corners_small_to_large(b, a).map(back)
+    let (a, b, swap) = if small_second(a, b) {
+        (b, a, true)
     } else {
-        corners_small_to_large(a, b)
-    }
+        (a, b, false)
+    };
+    let (alpha, beta) = (positions(a), positions(b));
+    let sharp = corners_small_to_large(a, b, &corners(a, &alpha), &corners(b, &beta));
+    let found = sharp.or_else(|| {
+        let (ra, rb) = (rounded_corners(a, &alpha), rounded_corners(b, &beta));
+        corners_small_to_large(a, b, &ra, &rb)
+    });
+    if swap { found.map(back) } else { found }
 }
 
-/// The signed turning at each corner of `p` (module docs), by vertex.
-fn corners(p: &[Point]) -> Vec<(usize, f64)> {
+/// The exterior angle of `p` at each vertex, signed (left turns positive).
+fn turns(p: &[Point]) -> Vec<f64> {
     let n = p.len();
     (0..n)
-        .filter_map(|i| {
+        .map(|i| {
             let (u, v) = (p[i] - p[(i + n - 1) % n], p[(i + 1) % n] - p[i]);
-            let turn = u.perp_dot(v).atan2(u.dot(v));
-            (turn.abs() >= CORNER_TURN).then_some((i, turn))
+            u.perp_dot(v).atan2(u.dot(v))
         })
         .collect()
 }
 
-/// [`align_corners`] with `small` (m vertices) against `large` (n ≥ m).
+/// The corners of `p` (module docs) as (fraction of the perimeter, signed
+/// turning); `at` holds each vertex's fraction ([`positions`]).
+fn corners(p: &[Point], at: &[f64]) -> Vec<(f64, f64)> {
+    turns(p)
+        .into_iter()
+        .enumerate()
+        .filter(|&(_, turn)| turn.abs() >= CORNER_TURN)
+        .map(|(i, turn)| (at[i], turn))
+        .collect()
+}
+
+/// The rounded corners of `p` as (fraction of the perimeter, signed
+/// turning): each maximal run of vertices around which the outline turns
+/// by at least [`ROUNDED_TURN`] one way within [`ROUNDED_SPAN`] of the
+/// perimeter, centred on the vertex (half the span either side), is one
+/// corner, placed where half of the run's window turning is done. A
+/// curve whose turning is that strong everywhere has none.
+fn rounded_corners(p: &[Point], at: &[f64]) -> Vec<(f64, f64)> {
+    let n = p.len();
+    if n < 3 {
+        return Vec::new();
+    }
+    let turn = turns(p);
+    // Vertex i's position unwrapped past the end: at[i % n] + i / n.
+    let pos = |i: usize| at[i % n] + (i / n) as f64;
+    // Window sums around each vertex by two pointers over the unwrapped
+    // outline (vertices i − n … i + 2n).
+    let half = ROUNDED_SPAN / 2.0;
+    let mut window = vec![0.0; n];
+    let (mut lo, mut hi, mut sum) = (0usize, 0usize, 0.0);
+    // lo and hi index the unwrapped sequence shifted by n (index j means
+    // vertex j − n), so the window [lo, hi) stays in range.
+    let upos = |j: usize| pos(j) - 1.0;
+    let uturn = |j: usize| turn[j % n];
+    for (i, w) in window.iter_mut().enumerate() {
+        let centre = at[i];
+        while hi < 3 * n && upos(hi) <= centre + half {
+            sum += uturn(hi);
+            hi += 1;
+        }
+        while upos(lo) < centre - half {
+            sum -= uturn(lo);
+            lo += 1;
+        }
+        *w = sum;
+    }
+    let strong = |i: usize| window[i].abs() >= ROUNDED_TURN;
+    if (0..n).all(strong) {
+        return Vec::new();
+    }
+    // Runs of strong vertices turning the same way, read from a vertex
+    // that ends a run.
+    let start = (0..n).find(|&i| !strong(i)).unwrap_or(0);
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < n {
+        let v = (start + i) % n;
+        if !strong(v) {
+            i += 1;
+            continue;
+        }
+        let sign = window[v] > 0.0;
+        let mut run = vec![v];
+        i += 1;
+        while i < n {
+            let u = (start + i) % n;
+            if !strong(u) || (window[u] > 0.0) != sign {
+                break;
+            }
+            run.push(u);
+            i += 1;
+        }
+        // Where half of the run's turning (the vertices' own) is done.
+        let total: f64 = run.iter().map(|&u| turn[u]).sum();
+        let mut done = 0.0;
+        let mut place = at[run[0]];
+        for &u in &run {
+            done += turn[u];
+            if done.abs() >= total.abs() / 2.0 {
+                place = at[u];
+                break;
+            }
+        }
+        let most = run.iter().map(|&u| window[u].abs()).fold(0.0, f64::max);
+        out.push((place, if sign { most } else { -most }));
+    }
+    out.sort_by(|x, y| x.0.total_cmp(&y.0));
+    out
+}
+
+/// [`align_corners`] with `small` (m vertices) against `large` (n ≥ m),
+/// given the corners of each as (fraction of the perimeter, signed turn).
 fn corners_small_to_large(
     small: &[Point],
     large: &[Point],
+    ca: &[(f64, f64)],
+    cb: &[(f64, f64)],
 ) -> Option<(Vec<Point>, Vec<Point>, usize)> {
-    let (ca, cb) = (corners(small), corners(large));
     let f = ca.len();
     if f < 2 || f != cb.len() || f > MOST_CORNERS {
         return None;
@@ -107,7 +218,7 @@ fn corners_small_to_large(
     let n = large.len();
     let alpha = positions(small);
     let beta = positions(large);
-    let xs: Vec<f64> = ca.iter().map(|&(i, _)| alpha[i]).collect();
+    let xs: Vec<f64> = ca.iter().map(|&(x, _)| x).collect();
     let mut best: Option<(f64, f64, Vec<Point>, usize)> = None;
     for r in 0..f {
         let matched = |i: usize| cb[(i + r) % f];
@@ -115,7 +226,7 @@ fn corners_small_to_large(
             continue;
         }
         // The corners' places on the large curve, unwrapped to increase.
-        let mut ys: Vec<f64> = (0..f).map(|i| beta[matched(i).0]).collect();
+        let mut ys: Vec<f64> = (0..f).map(|i| matched(i).0).collect();
         for i in 1..f {
             while ys[i] <= ys[i - 1] {
                 ys[i] += 1.0;
@@ -359,6 +470,14 @@ fn residual(a: &[Point], b: &[Point], k: usize) -> f64 {
 mod tests {
     use super::*;
 
+    /// The vertices of `p` that are sharp corners.
+    fn corner_vertices(p: &[Point]) -> Vec<usize> {
+        let turn = turns(p);
+        (0..p.len())
+            .filter(|&i| turn[i].abs() >= CORNER_TURN)
+            .collect()
+    }
+
     fn circle(n: usize, phase: f64, r: f64) -> Vec<Point> {
         (0..n)
             .map(|i| Point::from_angle(phase + std::f64::consts::TAU * i as f64 / n as f64) * r)
@@ -381,8 +500,8 @@ mod tests {
         // shares of the perimeter on the two strips.
         let a = arc_strip(20, 4.0, 0.3);
         let b = arc_strip(60, 6.0, 0.5);
-        assert_eq!(corners(&a).len(), 4);
-        assert_eq!(corners(&b).len(), 4);
+        assert_eq!(corner_vertices(&a).len(), 4);
+        assert_eq!(corner_vertices(&b).len(), 4);
         let (a2, b2, k) = align_corners(&a, &b).expect("the corners match up");
         let n = b.len();
         assert_eq!((a2.len(), b2.len()), (n, n));
@@ -392,11 +511,11 @@ mod tests {
         assert_eq!(originals, a);
         // Every corner of a lands on a corner of b, outer edge on outer
         // edge: vertex 0 (the outer edge's start) on b's vertex 0.
-        for (i, _) in corners(&a) {
+        for i in corner_vertices(&a) {
             let at = a2.iter().position(|p| *p == a[i]).unwrap();
             let j = (at + k) % n;
             assert!(
-                corners(&b).iter().any(|c| c.0 == j),
+                corner_vertices(&b).contains(&j),
                 "corner {i} of a on {j} of b"
             );
         }
@@ -409,7 +528,7 @@ mod tests {
         // elsewhere on b.
         let (o2, _, ko) = align(&a, &b);
         let cap = o2.iter().position(|p| *p == a[20]).unwrap();
-        assert!(!corners(&b).iter().any(|c| c.0 == (cap + ko) % n));
+        assert!(!corner_vertices(&b).contains(&((cap + ko) % n)));
     }
 
     #[test]
@@ -428,6 +547,87 @@ mod tests {
         assert!(align_corners(&triangle, &square).is_none());
         // A circle has no corner at all.
         assert!(align_corners(&circle(40, 0.0, 1.0), &circle(50, 0.0, 1.0)).is_none());
+    }
+
+    /// [`arc_strip`] with each cap rounded: a half circle of `cap`
+    /// stations across the ends instead of two sharp corners.
+    fn rounded_arc_strip(m: usize, turn: f64, width: f64, cap: usize) -> Vec<Point> {
+        let at = |i: usize, r: f64| Point::from_angle(turn * i as f64 / (m - 1) as f64) * r;
+        // Around the centre line's end at `angle`: from `from` (a unit
+        // vector across the strip) through `bulge` (along it) to −`from`.
+        let half = |angle: f64, start: bool| {
+            let centre = Point::from_angle(angle);
+            let tangent = Point::new(-centre.y, centre.x);
+            let (from, bulge) = if start {
+                (-centre, -tangent)
+            } else {
+                (centre, tangent)
+            };
+            (1..cap).map(move |j| {
+                let s = std::f64::consts::PI * j as f64 / cap as f64;
+                centre + (from * s.cos() + bulge * s.sin()) * (width / 2.0)
+            })
+        };
+        let outer = (0..m).map(|i| at(i, 1.0 + width / 2.0));
+        let end_cap = half(turn, false);
+        let inner = (0..m).rev().map(|i| at(i, 1.0 - width / 2.0));
+        let start_cap = half(0.0, true);
+        outer.chain(end_cap).chain(inner).chain(start_cap).collect()
+    }
+
+    #[test]
+    fn rounded_caps_are_corners_where_sharp_corners_are_missing() {
+        // Two rounded strips wound 400° and 700°: no sharp corner, one
+        // rounded cap at each end, turning left by about a half turn.
+        let a = rounded_arc_strip(40, 7.0, 0.25, 8);
+        let b = rounded_arc_strip(90, 12.2, 0.3, 10);
+        for p in [&a, &b] {
+            assert!(corner_vertices(p).is_empty());
+            let caps = rounded_corners(p, &positions(p));
+            assert_eq!(caps.len(), 2, "{caps:?}");
+            assert!(
+                caps.iter()
+                    .all(|c| c.1 > 0.0 && c.1 < 1.5 * std::f64::consts::PI)
+            );
+        }
+        let (a2, b2, k) = align_corners(&a, &b).expect("the caps match up");
+        let n = b.len();
+        assert_eq!(b2, b);
+        // Each end of a's outer edge lands on the same end of b's.
+        let start = a2.iter().position(|p| *p == a[0]).unwrap();
+        let end = a2.iter().position(|p| *p == a[39]).unwrap();
+        assert!(
+            (start + k) % n <= 1 || (start + k) % n >= n - 1,
+            "start on {}",
+            (start + k) % n
+        );
+        assert!(
+            ((end + k) % n).abs_diff(89) <= 3,
+            "end on {}",
+            (end + k) % n
+        );
+        // A sharp-cornered strip keeps matching by its sharp corners, and
+        // a circle (turning evenly) has no rounded corner.
+        assert!(
+            rounded_corners(&circle(30, 0.0, 1.0), &positions(&circle(30, 0.0, 1.0))).is_empty()
+        );
+        let sharp = arc_strip(20, 4.0, 0.3);
+        assert!(align_corners(&sharp, &arc_strip(60, 6.0, 0.5)).is_some());
+        // One rounded cap against two: no match.
+        let loop_ = circle(64, 0.0, 1.0);
+        assert!(align_corners(&loop_, &b).is_none());
+    }
+
+    #[test]
+    fn the_drawn_ribbons_have_two_rounded_caps() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("curves");
+        for name in ["ribbon-curl.svg", "folded-ribbon.svg"] {
+            let c = crate::Curve::from_path(dir.join(name)).unwrap();
+            let at = positions(&c.points);
+            assert!(corners(&c.points, &at).is_empty(), "{name}");
+            let caps = rounded_corners(&c.points, &at);
+            assert_eq!(caps.len(), 2, "{name}: {caps:?}");
+        }
     }
 
     #[test]

@@ -268,7 +268,6 @@ fn motion_stays_within_its_measured_bounds_on_the_motion_pairs() {
     // The pairs docs/motion.md lists above a detour of 3, with the bound
     // each keeps.
     let known = [
-        ("ribbon-curl.svg", "folded-ribbon.svg", 8.0),
         (
             "spiral-strip-720deg-n200.json",
             "spiral-strip-1080deg-n400.json",

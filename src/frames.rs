@@ -54,11 +54,15 @@ impl Frame {
 
 /// A morph: its frames, the paths that produced them and everything that
 /// did not go as asked.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+///
+/// In JSON: `{"path": ..., "fallback": ..., "fallbacks": [...], "motion":
+/// {"detour": ..., "unwind": ...}, "frames": [...]}`, where `motion` holds
+/// the [`detour`] and [`unwind`] of the frames (`null` where they are not
+/// defined, e.g. when the vertex count changes between frames).
+#[derive(Clone, Debug, PartialEq)]
 pub struct Morph {
     /// The third-vertex paths the frames were made with, in order of first
     /// use (in JSON: `path`, one name or names joined by `+`).
-    #[serde(rename = "path", serialize_with = "ser_paths")]
     pub paths: Vec<ThirdVertexPath>,
     /// True when anything other than what was asked was used (another
     /// path, the disk, another triangulation, other counts); `fallbacks`
@@ -86,8 +90,29 @@ pub(crate) fn path_names(paths: &[ThirdVertexPath]) -> String {
         .join("+")
 }
 
-fn ser_paths<S: serde::Serializer>(p: &[ThirdVertexPath], s: S) -> Result<S::Ok, S::Error> {
-    s.serialize_str(&path_names(p))
+impl serde::Serialize for Morph {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        #[derive(serde::Serialize)]
+        struct Motion {
+            detour: Option<f64>,
+            unwind: Option<f64>,
+        }
+        let finite = |x: f64| x.is_finite().then_some(x);
+        let mut m = s.serialize_struct("Morph", 5)?;
+        m.serialize_field("path", &self.path_name())?;
+        m.serialize_field("fallback", &self.fallback)?;
+        m.serialize_field("fallbacks", &self.fallbacks)?;
+        m.serialize_field(
+            "motion",
+            &Motion {
+                detour: finite(detour(&self.frames)),
+                unwind: finite(unwind(&self.frames)),
+            },
+        )?;
+        m.serialize_field("frames", &self.frames)?;
+        m.end()
+    }
 }
 
 /// One recovery: what was done instead of what was asked, and why.

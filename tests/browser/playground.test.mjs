@@ -226,6 +226,10 @@ test("playground: draw two curves, morph, scrub; the canvas is immerse morph's P
   measured.morph_and_first_frame_ms = Date.now() - t0;
   const status = await page.locator("#status").textContent();
   assert.match(status, new RegExp(`^${FRAMES} frames, every one an immersed disk`));
+  // The motion measures of the morph the server made.
+  const motion = await page.evaluate(() => window.immerse.lastMorph.morph.motion);
+  assert.ok(motion.detour >= 1 && motion.unwind > 0, JSON.stringify(motion));
+  assert.ok(status.includes(`detour ${motion.detour.toFixed(2)}, unwind ${motion.unwind.toFixed(2)}`), status);
 
   // Scrub with the slider (keyboard, as a person would), then play a bit.
   await page.locator("#scrub").focus();

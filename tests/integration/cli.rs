@@ -229,6 +229,68 @@ fn morph_writes_verified_json_frames() {
             f["t"]
         );
     }
+    // The motion measures, recomputed here from the frames written: the
+    // mean path over the least mean end-to-end distance (any cyclic
+    // shift), and the least total absolute turning over the ends' least.
+    let points = |f: &serde_json::Value| -> Vec<(f64, f64)> {
+        f["points"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
+            .collect()
+    };
+    let all: Vec<Vec<(f64, f64)>> = frames.iter().map(points).collect();
+    let dist = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0).hypot(a.1 - b.1);
+    let path: f64 = all
+        .windows(2)
+        .map(|w| (0..n).map(|i| dist(w[0][i], w[1][i])).sum::<f64>())
+        .sum();
+    let (first, last) = (&all[0], &all[all.len() - 1]);
+    let straight = (0..n)
+        .map(|k| {
+            (0..n)
+                .map(|i| dist(first[i], last[(i + k) % n]))
+                .sum::<f64>()
+        })
+        .fold(f64::INFINITY, f64::min);
+    let turning = |p: &[(f64, f64)]| -> f64 {
+        (0..n)
+            .map(|i| {
+                let (a, b, c) = (p[(i + n - 1) % n], p[i], p[(i + 1) % n]);
+                let (u, v) = ((b.0 - a.0, b.1 - a.1), (c.0 - b.0, c.1 - b.1));
+                (u.0 * v.1 - u.1 * v.0).atan2(u.0 * v.0 + u.1 * v.1).abs()
+            })
+            .sum()
+    };
+    let least = all.iter().map(|p| turning(p)).fold(f64::INFINITY, f64::min);
+    let ends = turning(first).min(turning(last));
+    let detour = v["motion"]["detour"].as_f64().unwrap();
+    let unwind = v["motion"]["unwind"].as_f64().unwrap();
+    assert!((detour - path / straight).abs() < 1e-9 * detour, "{detour}");
+    assert!((unwind - least / ends).abs() < 1e-9, "{unwind}");
+    assert!(
+        (1.0..3.0).contains(&detour) && unwind >= 0.9,
+        "{detour} {unwind}"
+    );
+    // --metrics prints the same measures.
+    let out = immerse_in(
+        dir.path(),
+        &[
+            "morph",
+            a.to_str().unwrap(),
+            b.to_str().unwrap(),
+            "--frames",
+            "12",
+            "--metrics",
+        ],
+    );
+    let text = String::from_utf8_lossy(&out.stdout).to_string();
+    assert!(
+        text.contains(&format!("detour               {detour:.2} ("))
+            && text.contains(&format!("unwind               {unwind:.2} (")),
+        "{text}"
+    );
     // A second run refuses to overwrite the file without --force.
     let again = immerse_in(dir.path(), &args);
     assert_eq!(again.status.code(), Some(2));

@@ -477,7 +477,8 @@ pub(crate) struct MorphArgs {
     #[arg(long, default_value = "linear")]
     pub(crate) easing: String,
     /// Print the quality metrics (area-matrix rank, variance, minimum
-    /// angle, ballooning, area share, valid frames) to stdout.
+    /// angle, ballooning, area share, valid frames, and the motion's
+    /// detour and unwind, also in the JSON) to stdout.
     #[arg(long)]
     pub(crate) metrics: bool,
     /// Write the frames as JSON to FILE; bare --json, "-" or /dev/stdout

@@ -167,7 +167,7 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
             })
         };
         output::print(&format!(
-            "vertices             {} (shift {}, {} flips on the {} side; {}{})\npath                 {}{}\nframes               {} ({} valid)\narea rank (AR)       {}\narea variance (Var)  {}\nminimum angle        {:.4}° (inputs {:.4}°)\nballooning           {:.4}\nsmallest area share  {}",
+            "vertices             {} (shift {}, {} flips on the {} side; {}{})\npath                 {}{}\nframes               {} ({} valid)\narea rank (AR)       {}\narea variance (Var)  {}\nminimum angle        {:.4}° (inputs {:.4}°)\nballooning           {:.4}\nsmallest area share  {}\ndetour               {:.2} (1 = every vertex on a straight line)\nunwind               {:.2} (below 1: overlaps undone and redone)",
             report.n,
             report.shift,
             report.flips,
@@ -210,6 +210,8 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
             m.endpoint_min_angle_deg,
             m.ballooning,
             opt(m.smallest_area_share),
+            m.detour,
+            m.unwind,
         ))?;
     }
     if args.json.is_none() && args.output.is_none() && !args.metrics && !args.quiet {

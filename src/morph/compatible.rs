@@ -69,6 +69,73 @@ pub struct Compatible {
     turn: f64,
     /// The total area range the straight path keeps to.
     area_range: (f64, f64),
+    /// The polar path's ends, made on first use.
+    polar: std::sync::OnceLock<PolarEnds>,
+}
+
+/// The two ends of the polar guide: per vertex, its angle about the
+/// source's vertex mean and its distance from it, then the same about the
+/// guide end's mean. Angles are unwound along each curve (consecutive
+/// vertices differ by less than half a turn), and the end's are shifted by
+/// the whole number of turns that moves the vertices least (angle changes
+/// weighted by distance from the mean), so a vertex winds the short way
+/// round unless the curves wind differently.
+#[derive(Clone, Debug)]
+struct PolarEnds {
+    /// Per vertex: [source angle, source distance, end angle, end distance].
+    at: Vec<[f64; 4]>,
+}
+
+impl PolarEnds {
+    fn new(a: &[Point], b: &[Point], [c0, c1]: [Point; 2]) -> PolarEnds {
+        use std::f64::consts::{PI, TAU};
+        let unwound = |p: &[Point], c: Point| -> Vec<(f64, f64)> {
+            let mut out: Vec<(f64, f64)> = Vec::with_capacity(p.len());
+            for &q in p {
+                let (d, r) = ((q - c).to_angle(), (q - c).length());
+                let angle = match out.last() {
+                    None => d,
+                    Some(&(prev, _)) => prev + (d - prev + PI).rem_euclid(TAU) - PI,
+                };
+                out.push((angle, r));
+            }
+            out
+        };
+        let (ua, ub) = (unwound(a, c0), unwound(b, c1));
+        // The whole turns that move the vertices least: the weighted
+        // median of the per-vertex turn counts (cost piecewise linear in
+        // the shift), rounded to the nearer of its two neighbours.
+        let cost = |k: f64| -> f64 {
+            ua.iter()
+                .zip(&ub)
+                .map(|(&(x, rx), &(y, ry))| (y + k * TAU - x).abs() * (rx + ry))
+                .sum()
+        };
+        let mut counts: Vec<(f64, f64)> = ua
+            .iter()
+            .zip(&ub)
+            .map(|(&(x, rx), &(y, ry))| ((x - y) / TAU, rx + ry))
+            .collect();
+        counts.sort_by(|p, q| p.0.total_cmp(&q.0));
+        let half = counts.iter().map(|c| c.1).sum::<f64>() / 2.0;
+        let mut acc = 0.0;
+        let mut median = counts.first().map_or(0.0, |c| c.0);
+        for &(k, w) in &counts {
+            acc += w;
+            if acc >= half {
+                median = k;
+                break;
+            }
+        }
+        let (lo, hi) = (median.floor(), median.ceil());
+        let k = if cost(lo) <= cost(hi) { lo } else { hi };
+        let at = ua
+            .iter()
+            .zip(&ub)
+            .map(|(&(x, rx), &(y, ry))| [x, rx, y + k * TAU, ry])
+            .collect();
+        PolarEnds { at }
+    }
 }
 
 /// Per triangle, the third vertex in base-frame coordinates on the source
@@ -322,6 +389,7 @@ impl Compatible {
             mean,
             turn,
             area_range: straight_area_range(a_s, a_d),
+            polar: std::sync::OnceLock::new(),
         })
     }
 
@@ -340,6 +408,7 @@ impl Compatible {
         assert_eq!(end.len(), self.src.len(), "a guide end of another length");
         (self.mean, self.turn) = guide_frame(&self.src, end);
         self.guide_end = end.to_vec();
+        self.polar = std::sync::OnceLock::new();
         self
     }
 
@@ -397,8 +466,12 @@ impl Compatible {
                 let ang = self.hybrid_angles(t);
                 self.lay_out_normalised(&ang, t)
             }
-            ThirdVertexPath::Straight => {
-                let guide = self.guide(t);
+            ThirdVertexPath::Straight | ThirdVertexPath::Polar => {
+                let guide = if path == ThirdVertexPath::Polar {
+                    self.polar_guide(t)
+                } else {
+                    self.guide(t)
+                };
                 let (ang, kept) = self.straight_angles(t, &guide);
                 // A triangle that keeps the guide's shape takes its factor
                 // from the guide's points (no trigonometry; the layout then
@@ -435,6 +508,23 @@ impl Compatible {
             .iter()
             .zip(&self.guide_end)
             .map(|(&p, &q)| c + spin.rotate((p - c0) * (1.0 - t) + back.rotate(q - c1) * t))
+            .collect()
+    }
+
+    /// The polar guide at `t` (the `polar` path): every vertex's angle
+    /// about the vertex mean and its distance from it interpolated
+    /// linearly between the source and the guide's end, about the mean
+    /// interpolated linearly ([`PolarEnds`]).
+    fn polar_guide(&self, t: f64) -> Vec<Point> {
+        let ends = self
+            .polar
+            .get_or_init(|| PolarEnds::new(&self.src, &self.guide_end, self.mean));
+        let c = self.mean[0].lerp(self.mean[1], t);
+        ends.at
+            .iter()
+            .map(|&[a0, r0, a1, r1]| {
+                c + Point::from_angle(a0 + (a1 - a0) * t) * (r0 + (r1 - r0) * t)
+            })
             .collect()
     }
 
@@ -923,13 +1013,16 @@ pub(crate) mod tests {
                 ThirdVertexPath::Angle,
                 ThirdVertexPath::Hybrid,
                 ThirdVertexPath::Straight,
+                ThirdVertexPath::Polar,
             ] {
                 let plan =
                     Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
                 let (a0, _) = area_and_centroid(&a, &tris);
                 let (a1, _) = area_and_centroid(&b, &tris);
-                // The straight path keeps a wider range (STRAIGHT_AREA_RANGE).
-                let (lo, hi) = if path == ThirdVertexPath::Straight {
+                // The straight and polar paths keep a wider range
+                // (STRAIGHT_AREA_RANGE).
+                let (lo, hi) = if matches!(path, ThirdVertexPath::Straight | ThirdVertexPath::Polar)
+                {
                     (
                         a0.min(a1) * STRAIGHT_AREA_RANGE.0,
                         a0.max(a1) * STRAIGHT_AREA_RANGE.1,
@@ -1117,16 +1210,105 @@ pub(crate) mod tests {
             // there), but it never jumps: a step of 1e-7 moves nothing far.
             for i in 0..400 {
                 let t = i as f64 / 400.0;
-                let p = plan.positions(t, ThirdVertexPath::Straight);
-                let q = plan.positions(t + 1e-7, ThirdVertexPath::Straight);
-                let m = p
-                    .iter()
-                    .zip(&q)
-                    .map(|(x, y)| (*x - *y).length())
-                    .fold(0.0, f64::max);
-                assert!(m < 1e-3 * diag, "straight jumps {m} at t = {t}");
+                for path in [ThirdVertexPath::Straight, ThirdVertexPath::Polar] {
+                    let p = plan.positions(t, path);
+                    let q = plan.positions(t + 1e-7, path);
+                    let m = p
+                        .iter()
+                        .zip(&q)
+                        .map(|(x, y)| (*x - *y).length())
+                        .fold(0.0, f64::max);
+                    assert!(m < 1e-3 * diag, "{path} jumps {m} at t = {t}");
+                }
             }
         }
+    }
+
+    /// Where the polar interpolation is valid with margins, the polar path
+    /// is that interpolation: spiral strips wound 1.2 and 2.1 turns, the
+    /// second turned by 0.4 rad, morph with every vertex on its arc about
+    /// the vertex means (angle unwound along the curve, shifted by whole
+    /// turns to move least, and distance both linear in t), computed here
+    /// from the definition; every frame an immersion.
+    #[test]
+    fn the_polar_path_winds_spirals_along_their_arcs() {
+        let (a, tris) = spiral_strip(60, 1.2, 0.15);
+        let (b0, _) = spiral_strip(60, 2.1, 0.15);
+        let b: Vec<Point> = b0
+            .iter()
+            .map(|p| Point::from_angle(0.4).rotate(*p))
+            .collect();
+        let mean = |p: &[Point]| p.iter().copied().sum::<Point>() / p.len() as f64;
+        let (c0, c1) = (mean(&a), mean(&b));
+        let unwound = |p: &[Point], c: Point| -> Vec<f64> {
+            let mut out: Vec<f64> = Vec::new();
+            for q in p {
+                let d = (*q - c).to_angle();
+                let next = match out.last() {
+                    None => d,
+                    Some(&prev) => {
+                        let mut x = d;
+                        while x - prev > PI {
+                            x -= TAU;
+                        }
+                        while x - prev < -PI {
+                            x += TAU;
+                        }
+                        x
+                    }
+                };
+                out.push(next);
+            }
+            out
+        };
+        let (ua, ub) = (unwound(&a, c0), unwound(&b, c1));
+        // Whole turns that move least, by trying each.
+        let moved = |k: f64| -> f64 {
+            (0..a.len())
+                .map(|i| {
+                    (ub[i] + k * TAU - ua[i]).abs() * ((a[i] - c0).length() + (b[i] - c1).length())
+                })
+                .sum()
+        };
+        let k = (-4..=4)
+            .map(f64::from)
+            .min_by(|x, y| moved(*x).total_cmp(&moved(*y)))
+            .unwrap();
+        let plan = Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
+        let diag = bbox_diag(&a).max(bbox_diag(&b));
+        let travel = |path: ThirdVertexPath| -> f64 {
+            let mut prev = a.clone();
+            let mut sum = 0.0;
+            for i in 1..=100 {
+                let t = f64::from(i) / 100.0;
+                let p = plan.positions(t, path);
+                assert!(crate::immersion::check(&p, &tris).is_ok(), "{path} t={t}");
+                sum += p
+                    .iter()
+                    .zip(&prev)
+                    .map(|(x, y)| (*x - *y).length())
+                    .sum::<f64>();
+                prev = p;
+            }
+            sum
+        };
+        for i in 1..100 {
+            let t = f64::from(i) / 100.0;
+            let c = c0.lerp(c1, t);
+            let got = plan.positions(t, ThirdVertexPath::Polar);
+            for v in 0..a.len() {
+                let ang = ua[v] * (1.0 - t) + (ub[v] + k * TAU) * t;
+                let r = (a[v] - c0).length() * (1.0 - t) + (b[v] - c1).length() * t;
+                let want = c + Point::from_angle(ang) * r;
+                assert!(
+                    (got[v] - want).length() < 1e-9 * diag,
+                    "t = {t}, vertex {v}: {:?} against {:?}",
+                    got[v],
+                    want
+                );
+            }
+        }
+        assert!(travel(ThirdVertexPath::Polar) > 0.0);
     }
 
     /// Where the linear morph is valid with margins, the straight path is

@@ -33,19 +33,29 @@ pub enum ThirdVertexPath {
     /// linear morph.
     #[default]
     Straight,
+    /// As straight as validity allows along arcs: like `straight`, but the
+    /// end shapes are interpolated in polar coordinates about their vertex
+    /// means (each vertex's angle, unwound along the curve, and its
+    /// distance), so a spiral winds up along its own turns instead of
+    /// cutting across them. An immersion for every t. The default path
+    /// tries it on the last leg beside `hybrid` and keeps the one whose
+    /// vertices travel less.
+    Polar,
 }
 
 impl ThirdVertexPath {
     /// All paths, in the order of the CLI's possible values.
-    pub const ALL: [ThirdVertexPath; 5] = [
+    pub const ALL: [ThirdVertexPath; 6] = [
         ThirdVertexPath::Hybrid,
         ThirdVertexPath::Straight,
+        ThirdVertexPath::Polar,
         ThirdVertexPath::Angle,
         ThirdVertexPath::RotateSlide,
         ThirdVertexPath::Linear,
     ];
 
-    /// The CLI name: `hybrid`, `angle`, `rotate-slide` or `linear`.
+    /// The CLI name: `hybrid`, `straight`, `polar`, `angle`,
+    /// `rotate-slide` or `linear`.
     pub fn as_str(self) -> &'static str {
         match self {
             ThirdVertexPath::Linear => "linear",
@@ -53,6 +63,7 @@ impl ThirdVertexPath {
             ThirdVertexPath::Angle => "angle",
             ThirdVertexPath::Hybrid => "hybrid",
             ThirdVertexPath::Straight => "straight",
+            ThirdVertexPath::Polar => "polar",
         }
     }
 
@@ -60,7 +71,10 @@ impl ThirdVertexPath {
     pub fn is_guaranteed(self) -> bool {
         matches!(
             self,
-            ThirdVertexPath::Angle | ThirdVertexPath::Hybrid | ThirdVertexPath::Straight
+            ThirdVertexPath::Angle
+                | ThirdVertexPath::Hybrid
+                | ThirdVertexPath::Straight
+                | ThirdVertexPath::Polar
         )
     }
 }
@@ -78,7 +92,9 @@ impl std::str::FromStr for ThirdVertexPath {
             .into_iter()
             .find(|p| p.as_str() == s)
             .ok_or_else(|| {
-                format!("unknown path '{s}'; use hybrid, straight, angle, rotate-slide or linear")
+                format!(
+                    "unknown path '{s}'; use hybrid, straight, polar, angle, rotate-slide or linear"
+                )
             })
     }
 }

@@ -346,6 +346,7 @@ pub(crate) fn recovery_paths(first: ThirdVertexPath) -> Vec<ThirdVertexPath> {
     for p in [
         ThirdVertexPath::Hybrid,
         ThirdVertexPath::Straight,
+        ThirdVertexPath::Polar,
         ThirdVertexPath::Angle,
     ] {
         if !v.contains(&p) {
@@ -640,18 +641,23 @@ fn last_leg(
     let mut why = String::new();
     // The travel before this leg, against the side's limit.
     let base = st.mean_travel();
-    // The straight path competes with the hybrid one on the last leg: a
-    // winding or unwinding that straight lines cut across is often
-    // shorter along the hybrid path. The one whose vertices travel less
-    // is kept, unless it unwinds overlaps the other keeps (`Leg::beats`);
-    // the rival is given up as soon as it cannot win.
+    // The straight path competes with the hybrid and the polar ones on the
+    // last leg: a winding or unwinding that straight lines cut across is
+    // often shorter along them. The one whose vertices travel least is
+    // kept, unless it unwinds overlaps another keeps (`Leg::beats`); each
+    // rival is given up as soon as it cannot win.
     let mut candidates = recovery_paths(inp.final_path);
     let compete = inp.final_path == ThirdVertexPath::Straight;
+    let last_rival = ThirdVertexPath::Polar;
     let mut best: Option<(Leg, usize)> = None;
-    // The first path when it passed the limit before the rival was tried.
+    // The first path when it passed the limit before a rival was tried.
     let mut passed: Option<ThirdVertexPath> = None;
+    // Why the requested path failed the exact check, if it did.
+    let mut first_failed: Option<String> = None;
     for (attempt, path) in candidates.drain(..).enumerate() {
         let rival = best.as_ref().map(|(b, _)| b);
+        // Whether another rival follows this one.
+        let more = compete && path != last_rival;
         // A rival that passes the limit travels more than the kept leg:
         // it can still win only if it keeps overlaps the kept leg undoes,
         // and then the side travels past the limit anyway. So the limit
@@ -661,11 +667,18 @@ fn last_leg(
             _ => Some((&inp.limit, base, &mut *peak)),
         };
         match sample_leg(plan.clone(), path, x, tris, inp.max_step, rival, lim) {
-            Ok(Sampled::CannotBeat) => break,
+            Ok(Sampled::CannotBeat) => {
+                if !more {
+                    break;
+                }
+            }
             Ok(Sampled::PassedLimit) => {
                 if best.is_some() {
                     // The kept leg keeps overlaps and travels less.
-                    break;
+                    if !more {
+                        break;
+                    }
+                    continue;
                 }
                 if !compete || passed.is_some() {
                     // Every path this side could end with travels past
@@ -673,16 +686,9 @@ fn last_leg(
                     return Ok(None);
                 }
                 passed = Some(path);
-                continue;
             }
             Ok(Sampled::Done(leg, repairs)) => {
                 let leg = *leg;
-                if attempt > 0 && best.is_none() && passed.is_none() {
-                    st.fallbacks.push(Fallback::new(
-                        &format!("used the {path} path for the last leg"),
-                        &why,
-                    ));
-                }
                 if let Some(first) = passed.take() {
                     // The first path passed the limit, this one did not:
                     // this one wins unless it unwinds overlaps the first
@@ -695,19 +701,26 @@ fn last_leg(
                         return Ok(None);
                     }
                     best = Some((leg, repairs));
-                    break;
-                }
-                let better = best.as_ref().is_none_or(|(b, _)| leg.beats(b));
-                if better {
+                } else if best.as_ref().is_none_or(|(b, _)| leg.beats(b)) {
                     best = Some((leg, repairs));
                 }
-                let tried_rival = !compete || path == ThirdVertexPath::Hybrid;
-                if tried_rival {
+                if !more {
                     break;
                 }
             }
-            Err(w) => why = w,
+            Err(w) => {
+                if attempt == 0 {
+                    first_failed = Some(w.clone());
+                }
+                why = w;
+            }
         }
+    }
+    if let (Some(w), Some((leg, _))) = (&first_failed, &best) {
+        st.fallbacks.push(Fallback::new(
+            &format!("used the {} path for the last leg", leg.plan_path()),
+            w,
+        ));
     }
     match best {
         Some((leg, repairs)) => {

@@ -381,6 +381,8 @@ pub(crate) enum PathArg {
     Hybrid,
     /// As straight as validity allows: linear where the linear morph is valid (guaranteed).
     Straight,
+    /// As straight as validity allows along arcs about the centre: spirals wind (guaranteed).
+    Polar,
     /// Linear interpolation of triangle angles (guaranteed, more distortion).
     Angle,
     /// The paper's rotate-and-slide path (checked; falls back to hybrid).

@@ -22,6 +22,7 @@ impl From<PathArg> for ThirdVertexPath {
         match p {
             PathArg::Hybrid => ThirdVertexPath::Hybrid,
             PathArg::Straight => ThirdVertexPath::Straight,
+            PathArg::Polar => ThirdVertexPath::Polar,
             PathArg::Angle => ThirdVertexPath::Angle,
             PathArg::RotateSlide => ThirdVertexPath::RotateSlide,
             PathArg::Linear => ThirdVertexPath::Linear,

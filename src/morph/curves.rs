@@ -226,8 +226,10 @@ pub enum Correspondence {
     Outline,
     /// As [`Correspondence::Outline`], with the corners of the two curves
     /// matched in order and the arc length between them matched piece by
-    /// piece (a strip's long and short edges correspond); the outline rule
-    /// when the curves do not have the same corners.
+    /// piece (a strip's long and short edges correspond); where the sharp
+    /// corners (turns of 60° or more) do not match up, rounded caps (a
+    /// stretch of at most 3% of the perimeter turning by 160° or more)
+    /// are matched instead; the outline rule when neither matches.
     Corners,
 }
 

@@ -431,7 +431,7 @@ pub(crate) enum IntermediateArg {
 pub(crate) enum CorrespondenceArg {
     /// Match the outlines by arc length up to a rotation and scale; inserted vertices go where the other curve's are.
     Outline,
-    /// As outline, with the curves' corners (turns of 60° or more) matched in order and the arc between them piece by piece.
+    /// As outline, with the curves' corners (turns of 60° or more, else rounded caps: 160° within 3% of the perimeter) matched in order and the arc between them piece by piece.
     Corners,
     /// The cyclic shift with the fewest edge flips between the triangulations.
     MinFlips,

@@ -645,7 +645,8 @@ fn last_leg(
     // last leg: a winding or unwinding that straight lines cut across is
     // often shorter along them. The one whose vertices travel least is
     // kept, unless it unwinds overlaps another keeps (`Leg::beats`); each
-    // rival is given up as soon as it cannot win.
+    // rival is given up as soon as it cannot win, and the polar path is
+    // tried only where the straight leg did not win over the hybrid one.
     let mut candidates = recovery_paths(inp.final_path);
     let compete = inp.final_path == ThirdVertexPath::Straight;
     let last_rival = ThirdVertexPath::Polar;
@@ -656,6 +657,14 @@ fn last_leg(
     let mut first_failed: Option<String> = None;
     for (attempt, path) in candidates.drain(..).enumerate() {
         let rival = best.as_ref().map(|(b, _)| b);
+        // The polar path is for windings that straight lines cut across;
+        // where the straight leg beat the hybrid one there is none.
+        if compete
+            && path == ThirdVertexPath::Polar
+            && rival.is_some_and(|r| r.plan_path() == ThirdVertexPath::Straight)
+        {
+            break;
+        }
         // Whether another rival follows this one.
         let more = compete && path != last_rival;
         // A rival that passes the limit travels more than the kept leg:

@@ -38,8 +38,8 @@ pub enum ThirdVertexPath {
     /// means (each vertex's angle, unwound along the curve, and its
     /// distance), so a spiral winds up along its own turns instead of
     /// cutting across them. An immersion for every t. The default path
-    /// tries it on the last leg beside `hybrid` and keeps the one whose
-    /// vertices travel less.
+    /// tries it on the last leg where `hybrid` travels less than
+    /// `straight`, and keeps the one whose vertices travel least.
     Polar,
 }
 

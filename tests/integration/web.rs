@@ -459,3 +459,56 @@ fn morph_writes_lottie() {
         assert_eq!(fills.last().unwrap()["r"], 1, "the curve is filled nonzero");
     }
 }
+
+/// The playground's option lists offer exactly the library's paths and
+/// correspondence rules (a rule added to one and not the other is caught
+/// here), and the server morphs with each path and rule the page offers.
+#[test]
+fn the_page_offers_every_path_and_rule_and_the_server_takes_them() {
+    let page = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("web/index.html"),
+    )
+    .unwrap();
+    let options = |id: &str| -> Vec<String> {
+        let start = page
+            .find(&format!("<select id=\"{id}\">"))
+            .unwrap_or_else(|| panic!("no select {id}"));
+        let end = start + page[start..].find("</select>").unwrap();
+        page[start..end]
+            .split("<option>")
+            .skip(1)
+            .map(|o| o.split('<').next().unwrap().to_string())
+            .collect()
+    };
+    let mut paths = options("opt-path");
+    let mut want: Vec<String> = immerse::morph::ThirdVertexPath::ALL
+        .iter()
+        .map(|p| p.as_str().to_string())
+        .collect();
+    paths.sort();
+    want.sort();
+    assert_eq!(paths, want);
+    let mut rules = options("opt-correspondence");
+    let mut want: Vec<String> = immerse::morph::Correspondence::ALL
+        .iter()
+        .map(|r| r.as_str().to_string())
+        .collect();
+    rules.sort();
+    want.sort();
+    assert_eq!(rules, want);
+    let server = Server::start(&[]);
+    let curves = [points_of("letter-E.json"), points_of("spiral-strip-400deg-n30.json")];
+    for (key, values) in [("path", &paths), ("correspondence", &rules)] {
+        for v in values.iter() {
+            let body = serde_json::json!({"curves": curves, "frames": 4, key: v});
+            let (status, reply) =
+                server.request("POST", "/api/morph", Some(body.to_string().as_bytes()));
+            assert_eq!(
+                status,
+                200,
+                "{key} {v}: {}",
+                String::from_utf8_lossy(&reply)
+            );
+        }
+    }
+}

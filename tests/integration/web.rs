@@ -480,24 +480,29 @@ fn the_page_offers_every_path_and_rule_and_the_server_takes_them() {
             .map(|o| o.split('<').next().unwrap().to_string())
             .collect()
     };
-    let mut paths = options("opt-path");
-    let mut want: Vec<String> = immerse::morph::ThirdVertexPath::ALL
-        .iter()
-        .map(|p| p.as_str().to_string())
-        .collect();
-    paths.sort();
-    want.sort();
-    assert_eq!(paths, want);
-    let mut rules = options("opt-correspondence");
-    let mut want: Vec<String> = immerse::morph::Correspondence::ALL
-        .iter()
-        .map(|r| r.as_str().to_string())
-        .collect();
-    rules.sort();
-    want.sort();
-    assert_eq!(rules, want);
+    // The page's list for `id`, checked against the library's names.
+    let offered = |id: &str, names: &[&str]| -> Vec<String> {
+        let got = options(id);
+        let mut sorted = got.clone();
+        sorted.sort();
+        let mut want: Vec<String> = names.iter().map(|n| n.to_string()).collect();
+        want.sort();
+        assert_eq!(sorted, want, "{id}");
+        got
+    };
+    let paths = offered(
+        "opt-path",
+        &immerse::morph::ThirdVertexPath::ALL.map(|p| p.as_str()),
+    );
+    let rules = offered(
+        "opt-correspondence",
+        &immerse::morph::Correspondence::ALL.map(|r| r.as_str()),
+    );
     let server = Server::start(&[]);
-    let curves = [points_of("letter-E.json"), points_of("spiral-strip-400deg-n30.json")];
+    let curves = [
+        points_of("letter-E.json"),
+        points_of("spiral-strip-400deg-n30.json"),
+    ];
     for (key, values) in [("path", &paths), ("correspondence", &rules)] {
         for v in values.iter() {
             let body = serde_json::json!({"curves": curves, "frames": 4, key: v});

@@ -1224,6 +1224,45 @@ pub(crate) mod tests {
         }
     }
 
+    /// A shape and its copy turned by θ (|θ| < π) morph along the polar
+    /// path by turning rigidly the short way about the vertex mean (which
+    /// moves straight): at t, turned by tθ, never a collapse through the
+    /// centre nor a spin the long way round.
+    #[test]
+    fn the_polar_path_turns_a_turned_copy_rigidly_the_short_way() {
+        let n = 24u32;
+        let a: Vec<Point> = (0..n)
+            .map(|i| {
+                let u = Point::from_angle(TAU * f64::from(i) / f64::from(n));
+                Point::new(1.5 * u.x + 0.2, u.y - 0.1)
+            })
+            .collect();
+        let tris: Vec<[u32; 3]> = (1..n - 1).map(|i| [0, i, i + 1]).collect();
+        for theta in [0.3, -2.5, 3.0] {
+            let b: Vec<Point> = a
+                .iter()
+                .map(|p| Point::from_angle(theta).rotate(*p))
+                .collect();
+            let plan =
+                Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
+            for t in [0.25, 0.5, 0.75] {
+                let got = plan.positions(t, ThirdVertexPath::Polar);
+                // About the vertex mean, which moves straight.
+                let (c0, c1) = (
+                    a.iter().sum::<Point>() / 24.0,
+                    b.iter().sum::<Point>() / 24.0,
+                );
+                for (g, p) in got.iter().zip(&a) {
+                    let want = c0.lerp(c1, t) + Point::from_angle(theta * t).rotate(*p - c0);
+                    assert!(
+                        (*g - want).length() < 1e-9,
+                        "θ {theta} t {t}: {g:?} {want:?}"
+                    );
+                }
+            }
+        }
+    }
+
     /// Where the polar interpolation is valid with margins, the polar path
     /// is that interpolation: spiral strips wound 1.2 and 2.1 turns, the
     /// second turned by 0.4 rad, morph with every vertex on its arc about

@@ -49,8 +49,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let reps: usize = value("--reps").map_or(Ok(1), |r| r.parse())?;
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("curves");
     let fractions: Vec<f64> = (0..40).map(|i| f64::from(i) / 39.0).collect();
-    println!("| pair | n | detour | unwind | flips | path | fallbacks | valid | time (ms) |");
-    println!("|---|---|---|---|---|---|---|---|---|");
+    println!(
+        "| pair | n | detour | winding reference | unwind | flips | path | fallbacks | valid | time (ms) |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|");
     let (mut detours, mut unwinds, mut total_ms) = (Vec::new(), Vec::new(), 0.0);
     for (a, b) in pairs::motion_pairs() {
         let ca = Curve::from_path(dir.join(&a))?;
@@ -72,9 +74,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 detours.push(m.detour);
                 unwinds.push(m.unwind);
                 println!(
-                    "| {a} → {b} | {} | {:.2} | {:.2} | {} | {} | {} | {}/{} | {ms:.1} |",
+                    "| {a} → {b} | {} | {:.2} | {:.2} | {:.2} | {} | {} | {} | {}/{} | {ms:.1} |",
                     report.n,
                     m.detour,
+                    winding_reference(&morph.frames, fractions.len()),
                     m.unwind,
                     report.flips,
                     morph.path_name(),
@@ -83,7 +86,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     m.frames,
                 );
             }
-            Err(e) => println!("| {a} → {b} | | | | | | error: {e} | | {ms:.1} |"),
+            Err(e) => println!("| {a} → {b} | | | | | | | error: {e} | | {ms:.1} |"),
         }
     }
     detours.sort_by(f64::total_cmp);
@@ -96,4 +99,66 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         detours.len()
     );
     Ok(())
+}
+
+/// The detour of the natural winding motion between the same two end
+/// frames, with the same vertex matching (`frames` of them, the same
+/// measure): each vertex's angle about its frame's vertex mean (unwound
+/// along the curve; the last frame's shifted by the whole turns that move
+/// the vertices least) and its distance from it interpolated linearly,
+/// about the mean interpolated linearly. Not necessarily an immersion: a
+/// reference for what winding costs, not a morph.
+fn winding_reference(morph: &[immerse::frames::Frame], frames: usize) -> f64 {
+    use immerse::Point;
+    use std::f64::consts::{PI, TAU};
+    let (Some(first), Some(last)) = (morph.first(), morph.last()) else {
+        return f64::NAN;
+    };
+    let (a, b) = (&first.points, &last.points);
+    if a.len() != b.len() || a.is_empty() {
+        return f64::NAN;
+    }
+    let mean = |p: &[Point]| p.iter().copied().sum::<Point>() / p.len() as f64;
+    let (c0, c1) = (mean(a), mean(b));
+    let unwound = |p: &[Point], c: Point| -> Vec<f64> {
+        let mut out: Vec<f64> = Vec::with_capacity(p.len());
+        for q in p {
+            let d = (*q - c).to_angle();
+            let next = out
+                .last()
+                .map_or(d, |&prev| prev + (d - prev + PI).rem_euclid(TAU) - PI);
+            out.push(next);
+        }
+        out
+    };
+    let (ua, ub) = (unwound(a, c0), unwound(b, c1));
+    let weight = |i: usize| (a[i] - c0).length() + (b[i] - c1).length();
+    let moved = |k: f64| -> f64 {
+        (0..a.len())
+            .map(|i| (ub[i] + k * TAU - ua[i]).abs() * weight(i))
+            .sum()
+    };
+    let k = (-8..=8)
+        .map(f64::from)
+        .min_by(|x, y| moved(*x).total_cmp(&moved(*y)))
+        .unwrap_or(0.0);
+    let reference: Vec<immerse::frames::Frame> = (0..frames)
+        .map(|j| {
+            let t = j as f64 / (frames - 1).max(1) as f64;
+            let c = c0.lerp(c1, t);
+            let points = (0..a.len())
+                .map(|i| {
+                    let angle = ua[i] + (ub[i] + k * TAU - ua[i]) * t;
+                    let r = (a[i] - c0).length() * (1.0 - t) + (b[i] - c1).length() * t;
+                    c + Point::from_angle(angle) * r
+                })
+                .collect();
+            immerse::frames::Frame {
+                t,
+                points,
+                triangles: Vec::new(),
+            }
+        })
+        .collect();
+    immerse::frames::detour(&reference)
 }

@@ -5,9 +5,15 @@
 //! 1 = overlaps undone and redone), flips, fallbacks and wall time, on the
 //! 40 frames a morph writes.
 //!
+//! Each row also gives the winding reference: the detour of the natural
+//! winding motion between the same end frames (see [`winding_reference`]).
+//!
 //! Run with `cargo run --release --example motion_table [-- OPTION...]`
 //! where options are `--path P`, `--correspondence C`, `--intermediate I`
-//! with the CLI's values, and `--reps K` (timing repetitions, median).
+//! with the CLI's values, and `--reps K` (timing repetitions, median);
+//! `--by-option` prints a table for each option changed alone from the
+//! defaults (and the earlier defaults) and a summary of them all
+//! (docs/motion-by-option.md).
 
 use immerse::Curve;
 use immerse::frames::metrics;
@@ -22,31 +28,109 @@ mod pairs;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let value = |flag: &str| {
-        args.iter()
-            .position(|a| a == flag)
-            .and_then(|i| args.get(i + 1))
-            .cloned()
-    };
+    let reps: usize = flag(&args, "--reps").map_or(Ok(1), |r| r.parse())?;
+    if !args.iter().any(|a| a == "--by-option") {
+        let summary = table(&options_of(&args)?, reps)?;
+        println!("\n{}", summary.line());
+        return Ok(());
+    }
+    // Every option changed alone from the defaults, then the earlier
+    // defaults: a table per option and a summary table at the end.
+    let sets: [&[&str]; 14] = [
+        &[],
+        &["--correspondence", "outline"],
+        &["--correspondence", "corners"],
+        &["--correspondence", "min-flips"],
+        &["--correspondence", "pivot"],
+        &["--correspondence", "shape"],
+        &["--correspondence", "identity"],
+        &["--path", "hybrid"],
+        &["--path", "polar"],
+        &["--path", "angle"],
+        &["--path", "rotate-slide"],
+        &["--path", "linear"],
+        &["--intermediate", "disk"],
+        &["--path", "hybrid", "--correspondence", "min-flips"],
+    ];
+    let mut rows = Vec::new();
+    for set in sets {
+        let label = if set.is_empty() {
+            "defaults".to_string()
+        } else {
+            format!("`{}`", set.join(" "))
+        };
+        let owned: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+        println!("## {label}\n");
+        let s = table(&options_of(&owned)?, reps)?;
+        println!("\n{}\n", s.line());
+        rows.push(format!(
+            "| {label} | {:.2} | {:.2} | {:.2} | {} |",
+            s.median, s.max, s.min_unwind, s.below
+        ));
+    }
+    println!("## Summary\n");
+    println!("| option | detour median | detour max | unwind min | pairs with unwind < 0.9 |");
+    println!("|---|---|---|---|---|");
+    for r in rows {
+        println!("{r}");
+    }
+    Ok(())
+}
+
+/// The value after `name` in `args`.
+fn flag(args: &[String], name: &str) -> Option<String> {
+    args.iter()
+        .position(|a| a == name)
+        .and_then(|i| args.get(i + 1))
+        .cloned()
+}
+
+/// The morph options that `args` (the CLI's `--path`, `--correspondence`
+/// and `--intermediate`) set on the defaults.
+fn options_of(args: &[String]) -> Result<CurveMorphOptions, Box<dyn std::error::Error>> {
     let mut options = CurveMorphOptions::DEFAULT;
-    if let Some(p) = value("--path") {
+    if let Some(p) = flag(args, "--path") {
         let path: ThirdVertexPath = p.parse()?;
         options = options.with_morph(MorphOptions::DEFAULT.with_path(path));
     }
-    if let Some(c) = value("--correspondence") {
+    if let Some(c) = flag(args, "--correspondence") {
         let rule = Correspondence::ALL
             .into_iter()
             .find(|r| r.as_str() == c)
             .ok_or_else(|| format!("unknown correspondence {c}"))?;
         options = options.with_correspondence(rule);
     }
-    if let Some(i) = value("--intermediate") {
+    if let Some(i) = flag(args, "--intermediate") {
         options = options.with_intermediate(match i.as_str() {
             "disk" => Intermediate::Disk,
             _ => Intermediate::Target,
         });
     }
-    let reps: usize = value("--reps").map_or(Ok(1), |r| r.parse())?;
+    Ok(options)
+}
+
+/// One table's summary.
+struct Summary {
+    pairs: usize,
+    median: f64,
+    max: f64,
+    min_unwind: f64,
+    below: usize,
+    total_ms: f64,
+}
+
+impl Summary {
+    fn line(&self) -> String {
+        format!(
+            "{} pairs: detour median {:.2}, max {:.2}; unwind min {:.2} ({} below 0.9); total time {:.0} ms",
+            self.pairs, self.median, self.max, self.min_unwind, self.below, self.total_ms
+        )
+    }
+}
+
+/// Prints the per-pair table for `options` (each morph timed `reps`
+/// times, the median kept) and returns its summary.
+fn table(options: &CurveMorphOptions, reps: usize) -> Result<Summary, Box<dyn std::error::Error>> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("curves");
     let fractions: Vec<f64> = (0..40).map(|i| f64::from(i) / 39.0).collect();
     println!(
@@ -61,7 +145,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let mut result = None;
         for _ in 0..reps.max(1) {
             let start = Instant::now();
-            let r = morph_curves(&ca.points, &cb.points, &fractions, &options);
+            let r = morph_curves(&ca.points, &cb.points, &fractions, options);
             times.push(start.elapsed().as_secs_f64() * 1e3);
             result = Some(r);
         }
@@ -90,15 +174,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     detours.sort_by(f64::total_cmp);
-    let median = detours.get(detours.len() / 2).copied().unwrap_or(f64::NAN);
-    let max = detours.last().copied().unwrap_or(f64::NAN);
-    let min_unwind = unwinds.iter().copied().fold(f64::INFINITY, f64::min);
-    let below = unwinds.iter().filter(|&&u| u < 0.9).count();
-    println!(
-        "\n{} pairs: detour median {median:.2}, max {max:.2}; unwind min {min_unwind:.2} ({below} below 0.9); total time {total_ms:.0} ms",
-        detours.len()
-    );
-    Ok(())
+    Ok(Summary {
+        pairs: detours.len(),
+        median: detours.get(detours.len() / 2).copied().unwrap_or(f64::NAN),
+        max: detours.last().copied().unwrap_or(f64::NAN),
+        min_unwind: unwinds.iter().copied().fold(f64::INFINITY, f64::min),
+        below: unwinds.iter().filter(|&&u| u < 0.9).count(),
+        total_ms,
+    })
 }
 
 /// The detour of the natural winding motion between the same two end

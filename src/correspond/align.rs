@@ -64,7 +64,7 @@ const CORNER_TURN: f64 = std::f64::consts::FRAC_PI_3;
 /// ribbon's rounded cap: 3%.
 const ROUNDED_SPAN: f64 = 0.03;
 
-/// Least turning of a rounded corner within [`ROUNDED_SPAN`]: 120°, so
+/// Least turning of a rounded corner within [`ROUNDED_SPAN`]: 160°, so
 /// that a wide loop of the outline (a ribbon's fold) is not one.
 const ROUNDED_TURN: f64 = 8.0 * std::f64::consts::PI / 9.0;
 
@@ -79,7 +79,7 @@ const MOST_CORNERS: usize = 16;
 /// matched piece by piece (so a strip's long and short edges, or a
 /// letter's strokes, correspond whatever their share of the perimeter).
 /// Where the sharp corners do not match up, rounded corners are tried the
-/// same way: stretches of at most 3% of the perimeter turning by 120° or
+/// same way: stretches of at most 3% of the perimeter turning by 160° or
 /// more, such as the rounded caps of a drawn ribbon, each placed at the
 /// middle of its turning.
 /// Of the cyclic matchings of the corners the one that stretches the
@@ -94,11 +94,10 @@ pub fn align_corners(a: &[Point], b: &[Point]) -> Option<Pairing> {
         (a, b, false)
     };
     let (alpha, beta) = (positions(a), positions(b));
-    let sharp = corners_small_to_large(a, b, &corners(a, &alpha), &corners(b, &beta));
-    let found = sharp.or_else(|| {
-        let (ra, rb) = (rounded_corners(a, &alpha), rounded_corners(b, &beta));
-        corners_small_to_large(a, b, &ra, &rb)
-    });
+    let match_up =
+        |ca: &[(f64, f64)], cb: &[(f64, f64)]| corners_small_to_large(a, b, &alpha, &beta, ca, cb);
+    let sharp = match_up(&corners(a, &alpha), &corners(b, &beta));
+    let found = sharp.or_else(|| match_up(&rounded_corners(a, &alpha), &rounded_corners(b, &beta)));
     if swap { found.map(back) } else { found }
 }
 
@@ -128,7 +127,7 @@ fn corners(p: &[Point], at: &[f64]) -> Vec<(f64, f64)> {
 /// turning): each maximal run of vertices around which the outline turns
 /// by at least [`ROUNDED_TURN`] one way within [`ROUNDED_SPAN`] of the
 /// perimeter, centred on the vertex (half the span either side), is one
-/// corner, placed where half of the run's window turning is done. A
+/// corner, placed where half of the run's vertices' own turning is done. A
 /// curve whose turning is that strong everywhere has none.
 fn rounded_corners(p: &[Point], at: &[f64]) -> Vec<(f64, f64)> {
     let n = p.len();
@@ -136,16 +135,13 @@ fn rounded_corners(p: &[Point], at: &[f64]) -> Vec<(f64, f64)> {
         return Vec::new();
     }
     let turn = turns(p);
-    // Vertex i's position unwrapped past the end: at[i % n] + i / n.
-    let pos = |i: usize| at[i % n] + (i / n) as f64;
-    // Window sums around each vertex by two pointers over the unwrapped
-    // outline (vertices i − n … i + 2n).
+    // Window sums around each vertex by two pointers over the outline
+    // unwrapped three times: index j is vertex j − n (mod n), at position
+    // at[j % n] + j / n − 1, so the window [lo, hi) stays in range.
     let half = ROUNDED_SPAN / 2.0;
     let mut window = vec![0.0; n];
     let (mut lo, mut hi, mut sum) = (0usize, 0usize, 0.0);
-    // lo and hi index the unwrapped sequence shifted by n (index j means
-    // vertex j − n), so the window [lo, hi) stays in range.
-    let upos = |j: usize| pos(j) - 1.0;
+    let upos = |j: usize| at[j % n] + (j / n) as f64 - 1.0;
     let uturn = |j: usize| turn[j % n];
     for (i, w) in window.iter_mut().enumerate() {
         let centre = at[i];
@@ -204,10 +200,13 @@ fn rounded_corners(p: &[Point], at: &[f64]) -> Vec<(f64, f64)> {
 }
 
 /// [`align_corners`] with `small` (m vertices) against `large` (n ≥ m),
-/// given the corners of each as (fraction of the perimeter, signed turn).
+/// given their vertices' fractions of the perimeter ([`positions`]) and
+/// the corners of each as (fraction of the perimeter, signed turn).
 fn corners_small_to_large(
     small: &[Point],
     large: &[Point],
+    alpha: &[f64],
+    beta: &[f64],
     ca: &[(f64, f64)],
     cb: &[(f64, f64)],
 ) -> Option<(Vec<Point>, Vec<Point>, usize)> {
@@ -216,8 +215,6 @@ fn corners_small_to_large(
         return None;
     }
     let n = large.len();
-    let alpha = positions(small);
-    let beta = positions(large);
     let xs: Vec<f64> = ca.iter().map(|&(x, _)| x).collect();
     let mut best: Option<(f64, f64, Vec<Point>, usize)> = None;
     for r in 0..f {
@@ -280,7 +277,7 @@ fn corners_small_to_large(
                     .abs()
             })
             .sum();
-        let padded = pad(small, &rel, &beta, k);
+        let padded = pad(small, &rel, beta, k);
         if !(0..n).all(|i| padded[i] != padded[(i + 1) % n]) {
             continue;
         }

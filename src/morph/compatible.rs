@@ -8,10 +8,10 @@
 //! third vertices move, so the shape is consistent at every t and equals
 //! the target at t = 1.
 //!
-//! Paths that lay triangles out from angles (`angle`, `hybrid`) are then
-//! normalised by a similarity so that √(total area) and the area centroid
-//! interpolate linearly and the root edge turns at a constant rate; this is
-//! applied at every t, so nothing jumps.
+//! Paths that lay triangles out from angles (`straight`, `polar`, `angle`,
+//! `hybrid`) are placed by the global fit: the least-squares similarity
+//! onto the straight guide, kept to an area range (docs/design.md §6,
+//! "Placement"); it is applied at every t, so nothing jumps.
 
 use super::layout::{self, lerp3};
 use super::paths::{
@@ -30,7 +30,8 @@ pub const DEFAULT_FAN_MARGIN: f64 = 0.05;
 /// lifted toward the angle rule (about 0.5°).
 pub const STRAIGHT_MIN_ANGLE: f64 = 0.5 * std::f64::consts::PI / 180.0;
 
-/// The straight path keeps its total area between these multiples of the
+/// The fitted paths (`straight`, `polar`, `angle`, `hybrid`) keep their
+/// total area between these multiples of the
 /// smaller and the larger endpoint's: a linear interpolation may shrink a
 /// little in the middle, as animators expect, but never collapse.
 pub const STRAIGHT_AREA_RANGE: (f64, f64) = (0.5, 2.0);
@@ -51,12 +52,6 @@ pub struct Compatible {
     ang_src: Vec<[f64; 3]>,
     ang_dst: Vec<[f64; 3]>,
     root: RootMotion,
-    /// √(total area) and area centroid of source and target.
-    scale: [f64; 2],
-    centroid: [Point; 2],
-    /// Root-edge direction in the source and its turn to the target.
-    edge_angle: f64,
-    edge_turn: f64,
     fan_margin: f64,
     /// Per triangle, its corners as (base start, base end, third).
     corners: Vec<[usize; 3]>,
@@ -67,7 +62,11 @@ pub struct Compatible {
     guide_end: Vec<Point>,
     mean: [Point; 2],
     turn: f64,
-    /// The total area range the straight path keeps to.
+    /// The vertex means of source and target and the best-fit rotation
+    /// between them: the frame of the guide toward the target itself, which
+    /// places the angle-based paths that ignore [`Compatible::with_guide`].
+    target_frame: ([Point; 2], f64),
+    /// The total area range the fitted paths keep to.
     area_range: (f64, f64),
     /// The polar path's ends, made on first use.
     polar: std::sync::OnceLock<PolarEnds>,
@@ -217,6 +216,24 @@ fn guide_frame(a: &[Point], b: &[Point]) -> ([Point; 2], f64) {
     ([ma, mb], cross.atan2(dot))
 }
 
+/// The straight guide from `src` to `end` at `t` in the frame `([c0, c1],
+/// turn)` of [`guide_frame`]: `src` and `end` interpolated linearly about
+/// their vertex means in a frame turning at a constant rate.
+fn linear_guide(
+    src: &[Point],
+    end: &[Point],
+    ([c0, c1], turn): ([Point; 2], f64),
+    t: f64,
+) -> Vec<Point> {
+    let c = c0.lerp(c1, t);
+    let spin = Point::from_angle(t * turn);
+    let back = Point::from_angle(-turn);
+    src.iter()
+        .zip(end)
+        .map(|(&p, &q)| c + spin.rotate((p - c0) * (1.0 - t) + back.rotate(q - c1) * t))
+        .collect()
+}
+
 /// The interpolated placement of the root triangle: x(t) = L(t)(p − c_s) +
 /// c(t) with L(t) = R(tθ)((1 − t)I + tS), where R(θ)S is the polar
 /// decomposition of the affine map from the source root to the target.
@@ -356,13 +373,8 @@ impl Compatible {
         }
         let rt = triangles[root_t].map(|v| v as usize);
         let root_motion = RootMotion::new(rt.map(|v| src[v]), rt.map(|v| dst[v]));
-        let (a_s, c_s) = area_and_centroid(src, triangles);
-        let (a_d, c_d) = area_and_centroid(dst, triangles);
-        let [x, y] = rooted.base[root_t].map(|v| v as usize);
-        let e_s = src[y] - src[x];
-        let e_d = dst[y] - dst[x];
-        let edge_angle = e_s.to_angle();
-        let edge_turn = e_s.perp_dot(e_d).atan2(e_s.dot(e_d));
+        let (a_s, _) = area_and_centroid(src, triangles);
+        let (a_d, _) = area_and_centroid(dst, triangles);
         let corners: Vec<[usize; 3]> = (0..m)
             .map(|t| {
                 let [x, y] = rooted.base[t].map(|v| v as usize);
@@ -379,15 +391,12 @@ impl Compatible {
             ang_src,
             ang_dst,
             root: root_motion,
-            scale: [a_s.sqrt(), a_d.sqrt()],
-            centroid: [c_s, c_d],
-            edge_angle,
-            edge_turn,
             fan_margin,
             corners,
             guide_end: dst.to_vec(),
             mean,
             turn,
+            target_frame: (mean, turn),
             area_range: straight_area_range(a_s, a_d),
             polar: std::sync::OnceLock::new(),
         })
@@ -460,19 +469,17 @@ impl Compatible {
                 let ang: Vec<[f64; 3]> = (0..self.triangles.len())
                     .map(|i| lerp3(self.ang_src[i], self.ang_dst[i], t))
                     .collect();
-                self.lay_out_normalised(&ang, t)
+                self.fitted(&layout::factors(&ang), &self.target_guide(t))
             }
             ThirdVertexPath::Hybrid => {
                 let ang = self.hybrid_angles(t);
-                self.lay_out_normalised(&ang, t)
+                self.fitted(&layout::factors(&ang), &self.target_guide(t))
             }
             ThirdVertexPath::Straight | ThirdVertexPath::Polar => {
-                let guide = if path == ThirdVertexPath::Polar {
-                    self.polar_guide(t)
-                } else {
-                    self.guide(t)
-                };
-                let (ang, kept) = self.straight_angles(t, &guide);
+                let guide = self.guide(t);
+                let polar = (path == ThirdVertexPath::Polar).then(|| self.polar_guide(t));
+                let shape = polar.as_deref().unwrap_or(&guide);
+                let (ang, kept) = self.straight_angles(t, shape);
                 // A triangle that keeps the guide's shape takes its factor
                 // from the guide's points (no trigonometry; the layout then
                 // reproduces the guide there up to rounding).
@@ -480,35 +487,42 @@ impl Compatible {
                     .map(|i| {
                         if kept[i] {
                             let [x, y, w] = self.corners[i];
-                            let (e, f) = (guide[y] - guide[x], guide[w] - guide[x]);
+                            let (e, f) = (shape[y] - shape[x], shape[w] - shape[x]);
                             Point::new(e.dot(f), e.perp_dot(f)) / e.length_squared()
                         } else {
                             layout::factor(ang[i])
                         }
                     })
                     .collect();
-                layout::lay_out_fitted(&self.rooted, &factors, |unit| {
-                    self.keep_area(layout::fit_similarity(unit, &guide), unit, &guide)
-                })
+                self.fitted(&factors, &guide)
             }
         }
+    }
+
+    /// Lays out `factors` placed by the global fit (docs/design.md §7b):
+    /// the least-squares similarity onto the straight guide `guide` (every
+    /// vertex counts, not only the root), kept to the area range by
+    /// [`Compatible::keep_area`].
+    fn fitted(&self, factors: &[Point], guide: &[Point]) -> (Vec<Point>, usize) {
+        layout::lay_out_fitted(&self.rooted, factors, |unit| {
+            self.keep_area(layout::fit_similarity(unit, guide), unit, guide)
+        })
     }
 
     /// The straight guide at `t`: the end shapes interpolated linearly in a
     /// frame that turns by the best-fit rotation between them (so a shape
     /// and its turned copy rotate instead of collapsing through the
     /// centre). With no rotation between the ends this is the linear
-    /// morph.
+    /// morph. It heads for the guide's end ([`Compatible::with_guide`]).
     fn guide(&self, t: f64) -> Vec<Point> {
-        let [c0, c1] = self.mean;
-        let c = c0.lerp(c1, t);
-        let spin = Point::from_angle(t * self.turn);
-        let back = Point::from_angle(-self.turn);
-        self.src
-            .iter()
-            .zip(&self.guide_end)
-            .map(|(&p, &q)| c + spin.rotate((p - c0) * (1.0 - t) + back.rotate(q - c1) * t))
-            .collect()
+        linear_guide(&self.src, &self.guide_end, (self.mean, self.turn), t)
+    }
+
+    /// The straight guide toward the target itself, whatever the guide's
+    /// end: it places the paths that reach the target's own shape
+    /// (`hybrid`, `angle`), so that they arrive where the target is.
+    fn target_guide(&self, t: f64) -> Vec<Point> {
+        linear_guide(&self.src, &self.dst, self.target_frame, t)
     }
 
     /// The polar guide at `t` (the `polar` path): every vertex's angle
@@ -664,7 +678,7 @@ impl Compatible {
         (ang, kept)
     }
 
-    /// The straight path never collapses or balloons the shape: where the
+    /// The fitted paths never collapse or balloon the shape: where the
     /// fitted layout's total area leaves the endpoints' range widened by
     /// [`STRAIGHT_AREA_RANGE`], it is scaled about the guide's vertex mean
     /// back to the nearest end of that range (a no-op where the linear
@@ -692,25 +706,6 @@ impl Compatible {
             a,
             b: cg - a.rotate(cu),
         }
-    }
-
-    /// Lays out an angle vector with the normalisation of the angle-based
-    /// paths: √(total area) and the area centroid interpolate linearly and
-    /// the root edge turns at a constant rate.
-    fn lay_out_normalised(&self, ang: &[[f64; 3]], t: f64) -> (Vec<Point>, usize) {
-        layout::lay_out_fitted(&self.rooted, &layout::factors(ang), |unit| {
-            let (area, centroid) = area_and_centroid(unit, &self.triangles);
-            let want_scale = (1.0 - t) * self.scale[0] + t * self.scale[1];
-            let want_centroid = self.centroid[0].lerp(self.centroid[1], t);
-            let [x, y] = self.rooted.base[self.rooted.root].map(|v| v as usize);
-            let e = unit[y] - unit[x];
-            let turn = self.edge_angle + t * self.edge_turn - e.to_angle();
-            let a = Point::from_angle(turn) * (want_scale / area.sqrt());
-            layout::Similarity {
-                a,
-                b: want_centroid - a.rotate(centroid),
-            }
-        })
     }
 
     /// The base-frame data, made on first use.
@@ -1019,17 +1014,12 @@ pub(crate) mod tests {
                     Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
                 let (a0, _) = area_and_centroid(&a, &tris);
                 let (a1, _) = area_and_centroid(&b, &tris);
-                // The straight and polar paths keep a wider range
-                // (STRAIGHT_AREA_RANGE).
-                let (lo, hi) = if matches!(path, ThirdVertexPath::Straight | ThirdVertexPath::Polar)
-                {
-                    (
-                        a0.min(a1) * STRAIGHT_AREA_RANGE.0,
-                        a0.max(a1) * STRAIGHT_AREA_RANGE.1,
-                    )
-                } else {
-                    (a0.min(a1), a0.max(a1))
-                };
+                // Every fitted path keeps the ends' range widened by
+                // STRAIGHT_AREA_RANGE.
+                let (lo, hi) = (
+                    a0.min(a1) * STRAIGHT_AREA_RANGE.0,
+                    a0.max(a1) * STRAIGHT_AREA_RANGE.1,
+                );
                 let mut prev: Option<Vec<Point>> = None;
                 for i in 0..=200 {
                     let t = i as f64 / 200.0;
@@ -1264,11 +1254,13 @@ pub(crate) mod tests {
     }
 
     /// Where the polar interpolation is valid with margins, the polar path
-    /// is that interpolation: spiral strips wound 1.2 and 2.1 turns, the
-    /// second turned by 0.4 rad, morph with every vertex on its arc about
-    /// the vertex means (angle unwound along the curve, shifted by whole
-    /// turns to move least, and distance both linear in t), computed here
-    /// from the definition; every frame an immersion.
+    /// has its shape: spiral strips wound 1.2 and 2.1 turns, the second
+    /// turned by 0.4 rad, morph with every vertex on its arc about the
+    /// vertex means (angle unwound along the curve, shifted by whole turns
+    /// to move least, and distance both linear in t), computed here from
+    /// the definition, up to the similarity of the global fit: the frame
+    /// keeps the straight guide's vertex mean and no rotation brings it
+    /// closer to that guide. Every frame an immersion.
     #[test]
     fn the_polar_path_winds_spirals_along_their_arcs() {
         let (a, tris) = spiral_strip(60, 1.2, 0.15);
@@ -1331,21 +1323,57 @@ pub(crate) mod tests {
             }
             sum
         };
+        // The best-fit rotation between the ends, about their means.
+        let (mut dot, mut cross) = (0.0, 0.0);
+        for (p, q) in a.iter().zip(&b) {
+            dot += (*p - c0).dot(*q - c1);
+            cross += (*p - c0).perp_dot(*q - c1);
+        }
+        let turn = cross.atan2(dot);
         for i in 1..100 {
             let t = f64::from(i) / 100.0;
             let c = c0.lerp(c1, t);
             let got = plan.positions(t, ThirdVertexPath::Polar);
+            let want: Vec<Point> = (0..a.len())
+                .map(|v| {
+                    let ang = ua[v] * (1.0 - t) + (ub[v] + k * TAU) * t;
+                    let r = (a[v] - c0).length() * (1.0 - t) + (b[v] - c1).length() * t;
+                    c + Point::from_angle(ang) * r
+                })
+                .collect();
+            // The shape is the polar interpolation's: `got` is a
+            // similarity image of `want` (z ↦ s·z + u, s complex).
+            let (mw, mg) = (mean(&want), mean(&got));
+            let (mut num, mut den) = (Point::ZERO, 0.0);
+            for (w, g) in want.iter().zip(&got) {
+                let (w, g) = (*w - mw, *g - mg);
+                num += Point::new(w.dot(g), w.perp_dot(g));
+                den += w.length_squared();
+            }
+            let s = num / den;
             for v in 0..a.len() {
-                let ang = ua[v] * (1.0 - t) + (ub[v] + k * TAU) * t;
-                let r = (a[v] - c0).length() * (1.0 - t) + (b[v] - c1).length() * t;
-                let want = c + Point::from_angle(ang) * r;
+                let image = s.rotate(want[v] - mw) + mg;
                 assert!(
-                    (got[v] - want).length() < 1e-9 * diag,
+                    (got[v] - image).length() < 1e-9 * diag,
                     "t = {t}, vertex {v}: {:?} against {:?}",
                     got[v],
-                    want
+                    image
                 );
             }
+            // Placed by the global fit onto the straight guide: the same
+            // vertex mean, and no rotation would bring it closer.
+            assert!((mean(&got) - c).length() < 1e-9 * diag, "t = {t}");
+            let spin = Point::from_angle(t * turn);
+            let (mut re, mut im) = (0.0, 0.0);
+            for v in 0..a.len() {
+                let guide = spin.rotate(
+                    (a[v] - c0) * (1.0 - t) + Point::from_angle(-turn).rotate(b[v] - c1) * t,
+                );
+                let g = got[v] - c;
+                re += g.dot(guide);
+                im += g.perp_dot(guide);
+            }
+            assert!(re > 0.0 && im.abs() < 1e-9 * re, "t = {t}: {re} {im}");
         }
         assert!(travel(ThirdVertexPath::Polar) > 0.0);
     }

@@ -1,12 +1,13 @@
 //! The compatible pairs of `curves/pairs/` (written by
 //! `cargo run --release --example make_pairs`): under the guaranteed paths
 //! every frame is an immersion, the end frames are the inputs and the total
-//! area stays within the endpoints' range.
+//! area stays within the fitted paths' range (half the smaller endpoint's
+//! area to twice the larger's, `STRAIGHT_AREA_RANGE`).
 
 use immerse::Curve;
 use immerse::frames::Frame;
 use immerse::immersion::check;
-use immerse::morph::{MorphOptions, ThirdVertexPath, morph_compatible};
+use immerse::morph::{MorphOptions, STRAIGHT_AREA_RANGE, ThirdVertexPath, morph_compatible};
 use immerse::quality::{Quality, triangulate_with};
 
 use crate::util::curves_dir;
@@ -84,7 +85,10 @@ fn guaranteed_paths_give_immersions_between_the_pairs() {
             triangles: tri.clone(),
         }
         .total_area();
-        let (lo, hi) = (a0.min(a1), a0.max(a1));
+        let (lo, hi) = (
+            a0.min(a1) * STRAIGHT_AREA_RANGE.0,
+            a0.max(a1) * STRAIGHT_AREA_RANGE.1,
+        );
         for path in [ThirdVertexPath::Hybrid, ThirdVertexPath::Angle] {
             let m = morph_compatible(
                 &src.points,
@@ -101,8 +105,8 @@ fn guaranteed_paths_give_immersions_between_the_pairs() {
                 assert!(f.is_immersion(), "{name} {path} t={}: {:?}", f.t, f.check());
                 let area = f.total_area();
                 assert!(
-                    area >= lo * 0.99 && area <= hi * 1.01,
-                    "{name} {path} t={}: area {area} outside [{lo}, {hi}] ± 1%",
+                    area >= lo * (1.0 - 1e-9) && area <= hi * (1.0 + 1e-9),
+                    "{name} {path} t={}: area {area} outside [{lo}, {hi}]",
                     f.t
                 );
             }

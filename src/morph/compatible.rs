@@ -1218,6 +1218,85 @@ pub(crate) mod tests {
     /// path by turning rigidly the short way about the vertex mean (which
     /// moves straight): at t, turned by tθ, never a collapse through the
     /// centre nor a spin the long way round.
+    /// The global fit, from its definition: on random compatible pairs,
+    /// every frame of `angle` and `hybrid` at every t has the vertex mean
+    /// of the straight guide toward the target (the means interpolated
+    /// linearly), no rotation about it brings the frame closer to that
+    /// guide (computed here: the ends interpolated about their means in a
+    /// frame turning by their best-fit rotation), and its scale is the
+    /// least-squares one unless the area range clamps it.
+    #[test]
+    fn angle_paths_are_placed_by_the_least_squares_fit_to_the_straight_guide() {
+        let mut rng = Rng(0x6a09e667f3bcc908);
+        let mean = |p: &[Point]| p.iter().copied().sum::<Point>() / p.len() as f64;
+        let mut unclamped = 0;
+        for case in 0..30 {
+            let n = 6 + (rng.next() * 30.0) as usize;
+            let tris = random_triangulation(n as u32, &mut rng);
+            let a = random_immersed_disk(n, &tris, 3.0, &mut rng);
+            let b: Vec<Point> = random_immersed_disk(n, &tris, 3.0, &mut rng)
+                .iter()
+                .map(|p| Point::from_angle(2.0).rotate(*p) * 1.7 + Point::new(3.0, -1.0))
+                .collect();
+            let (c0, c1) = (mean(&a), mean(&b));
+            let (mut dot, mut cross) = (0.0, 0.0);
+            for (p, q) in a.iter().zip(&b) {
+                dot += (*p - c0).dot(*q - c1);
+                cross += (*p - c0).perp_dot(*q - c1);
+            }
+            let turn = cross.atan2(dot);
+            let (a0, _) = area_and_centroid(&a, &tris);
+            let (a1, _) = area_and_centroid(&b, &tris);
+            let (lo, hi) = (
+                a0.min(a1) * STRAIGHT_AREA_RANGE.0,
+                a0.max(a1) * STRAIGHT_AREA_RANGE.1,
+            );
+            let plan =
+                Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
+            let diag = bbox_diag(&a).max(bbox_diag(&b));
+            for path in [ThirdVertexPath::Angle, ThirdVertexPath::Hybrid] {
+                for i in 1..20 {
+                    let t = f64::from(i) / 20.0;
+                    let got = plan.positions(t, path);
+                    let c = c0.lerp(c1, t);
+                    assert!(
+                        (mean(&got) - c).length() < 1e-9 * diag,
+                        "case {case} {path} t={t}"
+                    );
+                    let spin = Point::from_angle(t * turn);
+                    let (mut re, mut im, mut den) = (0.0, 0.0, 0.0);
+                    for v in 0..n {
+                        let guide = spin.rotate(
+                            (a[v] - c0) * (1.0 - t)
+                                + Point::from_angle(-turn).rotate(b[v] - c1) * t,
+                        );
+                        let g = got[v] - c;
+                        re += g.dot(guide);
+                        im += g.perp_dot(guide);
+                        den += g.length_squared();
+                    }
+                    assert!(
+                        re > 0.0 && im.abs() < 1e-9 * re,
+                        "case {case} {path} t={t}: {re} {im}"
+                    );
+                    // Least squares: the guide's projection on the frame
+                    // is the frame itself (re = den), unless the area was
+                    // clamped to the range.
+                    let (area, _) = area_and_centroid(&got, &tris);
+                    let at_bound = (area - lo).abs() < 1e-9 * lo || (area - hi).abs() < 1e-9 * hi;
+                    if !at_bound {
+                        unclamped += 1;
+                        assert!(
+                            (re - den).abs() < 1e-9 * den,
+                            "case {case} {path} t={t}: scale {re} against {den}"
+                        );
+                    }
+                }
+            }
+        }
+        assert!(unclamped > 500, "{unclamped} unclamped frames");
+    }
+
     #[test]
     fn the_polar_path_turns_a_turned_copy_rigidly_the_short_way() {
         let n = 24u32;

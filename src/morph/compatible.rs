@@ -31,9 +31,9 @@ pub const DEFAULT_FAN_MARGIN: f64 = 0.05;
 pub const STRAIGHT_MIN_ANGLE: f64 = 0.5 * std::f64::consts::PI / 180.0;
 
 /// The fitted paths (`straight`, `polar`, `angle`, `hybrid`) keep their
-/// total area between these multiples of the
-/// smaller and the larger endpoint's: a linear interpolation may shrink a
-/// little in the middle, as animators expect, but never collapse.
+/// total area between these multiples of the smaller and the larger
+/// endpoint's: a linear interpolation may shrink a little in the middle, as
+/// animators expect, but never collapse.
 pub const STRAIGHT_AREA_RANGE: (f64, f64) = (0.5, 2.0);
 
 /// Precomputed data for morphing one compatible pair.
@@ -56,12 +56,11 @@ pub struct Compatible {
     /// Per triangle, its corners as (base start, base end, third).
     corners: Vec<[usize; 3]>,
     /// Where the straight path's guide ends (the target unless
-    /// [`Compatible::with_guide`] says otherwise), the vertex means of the
-    /// source and of that end, and the best-fit rotation between them (the
-    /// guide turns by it).
+    /// [`Compatible::with_guide`] says otherwise).
     guide_end: Vec<Point>,
-    mean: [Point; 2],
-    turn: f64,
+    /// The vertex means of the source and of the guide's end, and the
+    /// best-fit rotation between them (the guide turns by it).
+    guide_frame: ([Point; 2], f64),
     /// The vertex means of source and target and the best-fit rotation
     /// between them: the frame of the guide toward the target itself, which
     /// places the angle-based paths that ignore [`Compatible::with_guide`].
@@ -381,7 +380,7 @@ impl Compatible {
                 [x, y, rooted.third[t] as usize]
             })
             .collect();
-        let (mean, turn) = guide_frame(src, dst);
+        let frame = guide_frame(src, dst);
         Ok(Compatible {
             src: src.to_vec(),
             dst: dst.to_vec(),
@@ -394,9 +393,8 @@ impl Compatible {
             fan_margin,
             corners,
             guide_end: dst.to_vec(),
-            mean,
-            turn,
-            target_frame: (mean, turn),
+            guide_frame: frame,
+            target_frame: frame,
             area_range: straight_area_range(a_s, a_d),
             polar: std::sync::OnceLock::new(),
         })
@@ -415,7 +413,7 @@ impl Compatible {
     /// When `end` has another length than the curves (a bug in the caller).
     pub(crate) fn with_guide(mut self, end: &[Point]) -> Compatible {
         assert_eq!(end.len(), self.src.len(), "a guide end of another length");
-        (self.mean, self.turn) = guide_frame(&self.src, end);
+        self.guide_frame = guide_frame(&self.src, end);
         self.guide_end = end.to_vec();
         self.polar = std::sync::OnceLock::new();
         self
@@ -499,7 +497,8 @@ impl Compatible {
         }
     }
 
-    /// Lays out `factors` placed by the global fit (docs/design.md §7b):
+    /// Lays out `factors` placed by the global fit (docs/design.md §6,
+    /// "Placement"):
     /// the least-squares similarity onto the straight guide `guide` (every
     /// vertex counts, not only the root), kept to the area range by
     /// [`Compatible::keep_area`].
@@ -515,7 +514,7 @@ impl Compatible {
     /// centre). With no rotation between the ends this is the linear
     /// morph. It heads for the guide's end ([`Compatible::with_guide`]).
     fn guide(&self, t: f64) -> Vec<Point> {
-        linear_guide(&self.src, &self.guide_end, (self.mean, self.turn), t)
+        linear_guide(&self.src, &self.guide_end, self.guide_frame, t)
     }
 
     /// The straight guide toward the target itself, whatever the guide's
@@ -532,8 +531,9 @@ impl Compatible {
     fn polar_guide(&self, t: f64) -> Vec<Point> {
         let ends = self
             .polar
-            .get_or_init(|| PolarEnds::new(&self.src, &self.guide_end, self.mean));
-        let c = self.mean[0].lerp(self.mean[1], t);
+            .get_or_init(|| PolarEnds::new(&self.src, &self.guide_end, self.guide_frame.0));
+        let [c0, c1] = self.guide_frame.0;
+        let c = c0.lerp(c1, t);
         ends.at
             .iter()
             .map(|&[a0, r0, a1, r1]| {
@@ -1214,10 +1214,37 @@ pub(crate) mod tests {
         }
     }
 
-    /// A shape and its copy turned by θ (|θ| < π) morph along the polar
-    /// path by turning rigidly the short way about the vertex mean (which
-    /// moves straight): at t, turned by tθ, never a collapse through the
-    /// centre nor a spin the long way round.
+    /// `got` measured against the straight guide from `a` to `b` at `t`,
+    /// the guide computed here from its definition (the ends interpolated
+    /// linearly about their vertex means in a frame turning by their
+    /// best-fit rotation): the distance between the two vertex means, and
+    /// Σ g·h, Σ g×h and Σ |g|² over the vertices (g the frame, h the
+    /// guide, each about its mean). The least-squares similarity onto the
+    /// guide keeps the mean (distance 0), needs no further rotation
+    /// (Σ g×h = 0 with Σ g·h > 0) and, unscaled, has Σ g·h = Σ |g|².
+    fn against_straight_guide(a: &[Point], b: &[Point], t: f64, got: &[Point]) -> [f64; 4] {
+        let mean = |p: &[Point]| p.iter().copied().sum::<Point>() / p.len() as f64;
+        let (c0, c1) = (mean(a), mean(b));
+        let (mut dot, mut cross) = (0.0, 0.0);
+        for (p, q) in a.iter().zip(b) {
+            dot += (*p - c0).dot(*q - c1);
+            cross += (*p - c0).perp_dot(*q - c1);
+        }
+        let turn = cross.atan2(dot);
+        let spin = Point::from_angle(t * turn);
+        let c = c0.lerp(c1, t);
+        let (mut re, mut im, mut den) = (0.0, 0.0, 0.0);
+        for v in 0..a.len() {
+            let h = spin
+                .rotate((a[v] - c0) * (1.0 - t) + Point::from_angle(-turn).rotate(b[v] - c1) * t);
+            let g = got[v] - c;
+            re += g.dot(h);
+            im += g.perp_dot(h);
+            den += g.length_squared();
+        }
+        [(mean(got) - c).length(), re, im, den]
+    }
+
     /// The global fit, from its definition: on random compatible pairs,
     /// every frame of `angle` and `hybrid` at every t has the vertex mean
     /// of the straight guide toward the target (the means interpolated
@@ -1228,7 +1255,6 @@ pub(crate) mod tests {
     #[test]
     fn angle_paths_are_placed_by_the_least_squares_fit_to_the_straight_guide() {
         let mut rng = Rng(0x6a09e667f3bcc908);
-        let mean = |p: &[Point]| p.iter().copied().sum::<Point>() / p.len() as f64;
         let mut unclamped = 0;
         for case in 0..30 {
             let n = 6 + (rng.next() * 30.0) as usize;
@@ -1238,13 +1264,6 @@ pub(crate) mod tests {
                 .iter()
                 .map(|p| Point::from_angle(2.0).rotate(*p) * 1.7 + Point::new(3.0, -1.0))
                 .collect();
-            let (c0, c1) = (mean(&a), mean(&b));
-            let (mut dot, mut cross) = (0.0, 0.0);
-            for (p, q) in a.iter().zip(&b) {
-                dot += (*p - c0).dot(*q - c1);
-                cross += (*p - c0).perp_dot(*q - c1);
-            }
-            let turn = cross.atan2(dot);
             let (a0, _) = area_and_centroid(&a, &tris);
             let (a1, _) = area_and_centroid(&b, &tris);
             let (lo, hi) = (
@@ -1258,23 +1277,8 @@ pub(crate) mod tests {
                 for i in 1..20 {
                     let t = f64::from(i) / 20.0;
                     let got = plan.positions(t, path);
-                    let c = c0.lerp(c1, t);
-                    assert!(
-                        (mean(&got) - c).length() < 1e-9 * diag,
-                        "case {case} {path} t={t}"
-                    );
-                    let spin = Point::from_angle(t * turn);
-                    let (mut re, mut im, mut den) = (0.0, 0.0, 0.0);
-                    for v in 0..n {
-                        let guide = spin.rotate(
-                            (a[v] - c0) * (1.0 - t)
-                                + Point::from_angle(-turn).rotate(b[v] - c1) * t,
-                        );
-                        let g = got[v] - c;
-                        re += g.dot(guide);
-                        im += g.perp_dot(guide);
-                        den += g.length_squared();
-                    }
+                    let [off, re, im, den] = against_straight_guide(&a, &b, t, &got);
+                    assert!(off < 1e-9 * diag, "case {case} {path} t={t}");
                     assert!(
                         re > 0.0 && im.abs() < 1e-9 * re,
                         "case {case} {path} t={t}: {re} {im}"
@@ -1297,6 +1301,10 @@ pub(crate) mod tests {
         assert!(unclamped > 500, "{unclamped} unclamped frames");
     }
 
+    /// A shape and its copy turned by θ (|θ| < π) morph along the polar
+    /// path by turning rigidly the short way about the vertex mean (which
+    /// moves straight): at t, turned by tθ, never a collapse through the
+    /// centre nor a spin the long way round.
     #[test]
     fn the_polar_path_turns_a_turned_copy_rigidly_the_short_way() {
         let n = 24u32;
@@ -1402,13 +1410,6 @@ pub(crate) mod tests {
             }
             sum
         };
-        // The best-fit rotation between the ends, about their means.
-        let (mut dot, mut cross) = (0.0, 0.0);
-        for (p, q) in a.iter().zip(&b) {
-            dot += (*p - c0).dot(*q - c1);
-            cross += (*p - c0).perp_dot(*q - c1);
-        }
-        let turn = cross.atan2(dot);
         for i in 1..100 {
             let t = f64::from(i) / 100.0;
             let c = c0.lerp(c1, t);
@@ -1441,17 +1442,8 @@ pub(crate) mod tests {
             }
             // Placed by the global fit onto the straight guide: the same
             // vertex mean, and no rotation would bring it closer.
-            assert!((mean(&got) - c).length() < 1e-9 * diag, "t = {t}");
-            let spin = Point::from_angle(t * turn);
-            let (mut re, mut im) = (0.0, 0.0);
-            for v in 0..a.len() {
-                let guide = spin.rotate(
-                    (a[v] - c0) * (1.0 - t) + Point::from_angle(-turn).rotate(b[v] - c1) * t,
-                );
-                let g = got[v] - c;
-                re += g.dot(guide);
-                im += g.perp_dot(guide);
-            }
+            let [off, re, im, _] = against_straight_guide(&a, &b, t, &got);
+            assert!(off < 1e-9 * diag, "t = {t}");
             assert!(re > 0.0 && im.abs() < 1e-9 * re, "t = {t}: {re} {im}");
         }
         assert!(travel(ThirdVertexPath::Polar) > 0.0);

@@ -14,6 +14,7 @@
 //! "Placement"); it is applied at every t, so nothing jumps.
 
 use super::layout::{self, lerp3};
+use super::rigid::RigidGuide;
 use super::paths::{
     RotateSlide, ThirdVertexPath, base_frame_angles, from_base_frame, to_base_frame,
 };
@@ -69,6 +70,13 @@ pub struct Compatible {
     area_range: (f64, f64),
     /// The polar path's ends, made on first use.
     polar: std::sync::OnceLock<PolarEnds>,
+    /// The rigid path's guide, made on first use (`None` where it cannot
+    /// be factored, and the straight guide stands in).
+    rigid: std::sync::OnceLock<Option<RigidGuide>>,
+    /// Whether the guide heads for the target itself: then t ≥ 1 gives
+    /// the target exactly. A leg whose guide heads elsewhere
+    /// ([`Compatible::with_guide`]) ends where its path does.
+    guide_is_target: bool,
 }
 
 /// The two ends of the polar guide: per vertex, its angle about the
@@ -397,6 +405,8 @@ impl Compatible {
             target_frame: frame,
             area_range: straight_area_range(a_s, a_d),
             polar: std::sync::OnceLock::new(),
+            rigid: std::sync::OnceLock::new(),
+            guide_is_target: true,
         })
     }
 
@@ -414,8 +424,10 @@ impl Compatible {
     pub(crate) fn with_guide(mut self, end: &[Point]) -> Compatible {
         assert_eq!(end.len(), self.src.len(), "a guide end of another length");
         self.guide_frame = guide_frame(&self.src, end);
+        self.guide_is_target = end == self.dst.as_slice();
         self.guide_end = end.to_vec();
         self.polar = std::sync::OnceLock::new();
+        self.rigid = std::sync::OnceLock::new();
         self
     }
 
@@ -458,9 +470,10 @@ impl Compatible {
         if t <= 0.0 {
             return (self.src.clone(), 0);
         }
-        if t >= 1.0 {
+        if t >= 1.0 && (self.guide_is_target || path != ThirdVertexPath::Rigid) {
             return (self.dst.clone(), 0);
         }
+        let t = t.min(1.0);
         match path {
             ThirdVertexPath::Linear | ThirdVertexPath::RotateSlide => (self.propagate(t, path), 0),
             ThirdVertexPath::Angle => {
@@ -472,6 +485,11 @@ impl Compatible {
             ThirdVertexPath::Hybrid => {
                 let ang = self.hybrid_angles(t);
                 self.fitted(&layout::factors(&ang), &self.target_guide(t))
+            }
+            ThirdVertexPath::Rigid => {
+                let guide = self.rigid_guide(t).unwrap_or_else(|| self.guide(t));
+                let factors = self.projected_factors(t, &guide);
+                self.fitted(&factors, &guide)
             }
             ThirdVertexPath::Straight | ThirdVertexPath::Polar => {
                 let guide = self.guide(t);
@@ -522,6 +540,110 @@ impl Compatible {
     /// (`hybrid`, `angle`), so that they arrive where the target is.
     fn target_guide(&self, t: f64) -> Vec<Point> {
         linear_guide(&self.src, &self.dst, self.target_frame, t)
+    }
+
+    /// The as-rigid-as-possible guide at `t` (the `rigid` path): every
+    /// triangle's rotation and stretch toward the guide's end interpolated
+    /// separately and the positions fitted to them ([`RigidGuide`]). A
+    /// triangle that is not counter-clockwise on the guide's end (a leg
+    /// heading for the other curve under a triangulation that curve does
+    /// not carry) heads for its shape on the target instead. `None` where
+    /// the system cannot be factored.
+    fn rigid_guide(&self, t: f64) -> Option<Vec<Point>> {
+        let guide = self.rigid.get_or_init(|| {
+            let ends: Vec<[Point; 2]> = self
+                .triangles
+                .iter()
+                .map(|tri| {
+                    let [a, b, c] = tri.map(|v| v as usize);
+                    let e = &self.guide_end;
+                    if crate::geom::orient(e[a], e[b], e[c]).is_ccw() {
+                        [e[b] - e[a], e[c] - e[a]]
+                    } else {
+                        let d = &self.dst;
+                        [d[b] - d[a], d[c] - d[a]]
+                    }
+                })
+                .collect();
+            RigidGuide::new(
+                &self.src,
+                &self.triangles,
+                &ends,
+                &self.rooted,
+                self.guide_frame.0,
+            )
+        });
+        guide.as_ref().map(|g| g.at(t))
+    }
+
+    /// The layout factors of the guide `guide` at `t`, projected into the
+    /// valid set V(T) (docs/design.md §6): each triangle's third vertex,
+    /// in its base frame, is moved to the nearest point where all three of
+    /// its angles are at least its floor (half its smallest angle in the
+    /// angle rule at t, at most [`STRAIGHT_MIN_ANGLE`]); then every vertex
+    /// whose fan would pass 2π − min(ε, (2π − S_c)/2) blends its own
+    /// triangles toward the angle rule, and whatever is left is settled by
+    /// the global closed form of the hybrid path. The nearest-point step is
+    /// a projection onto a convex set, so it never moves a vertex faster
+    /// than the guide moves it: the result is as continuous as the guide.
+    /// Where the guide is valid with these margins its own factors are
+    /// returned.
+    fn projected_factors(&self, t: f64, guide: &[Point]) -> Vec<Point> {
+        let m = self.triangles.len();
+        let rule: Vec<[f64; 3]> = (0..m)
+            .map(|i| lerp3(self.ang_src[i], self.ang_dst[i], t))
+            .collect();
+        let mut factors = Vec::with_capacity(m);
+        let mut ang = Vec::with_capacity(m);
+        for (i, c) in rule.iter().enumerate() {
+            let [x, y, w] = self.corners[i];
+            let floor = floor_of(*c);
+            let (e, f) = (guide[y] - guide[x], guide[w] - guide[x]);
+            let l2 = e.length_squared();
+            let z = Point::new(e.dot(f), e.perp_dot(f)) / l2;
+            let z = if l2 > 0.0 && z.is_finite() {
+                project_to_floor(z, floor)
+            } else {
+                layout::factor(*c)
+            };
+            factors.push(z);
+            ang.push(factor_angles(z));
+        }
+        let n = self.src.len();
+        let s_c = layout::fan_sums(n, &self.corners, &rule);
+        let cap = |v: usize| TAU - self.fan_margin.min((TAU - s_c[v]) / 2.0);
+        // Local: each over-full vertex blends its own fan.
+        let s = layout::fan_sums(n, &self.corners, &ang);
+        let local: Vec<f64> = (0..n)
+            .map(|v| {
+                let c = cap(v);
+                if s[v] > c && s[v] > s_c[v] {
+                    ((s[v] - c) / (s[v] - s_c[v])).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        for (i, a) in ang.iter_mut().enumerate() {
+            let l = self.corners[i]
+                .iter()
+                .map(|&v| local[v])
+                .fold(0.0, f64::max);
+            if l > 0.0 {
+                *a = lerp3(*a, rule[i], l);
+                factors[i] = layout::factor(*a);
+            }
+        }
+        // Global: whatever the local step could not settle.
+        let s = layout::fan_sums(n, &self.corners, &ang);
+        let lambda = layout::fan_blend(&s, &s_c, cap);
+        if lambda > 0.0 {
+            for ((a, c), f) in ang.iter_mut().zip(&rule).zip(factors.iter_mut()) {
+                *a = lerp3(*a, *c, lambda);
+                *f = layout::factor(*a);
+            }
+        }
+        factors
     }
 
     /// The polar guide at `t` (the `polar` path): every vertex's angle
@@ -775,6 +897,93 @@ impl Compatible {
         });
         (0..m).map(|i| lerp3(ang_b[i], ang_c[i], lambda)).collect()
     }
+}
+
+/// The floor of a triangle whose angles in the angle rule are `rule`:
+/// half the smallest of them, at most [`STRAIGHT_MIN_ANGLE`].
+fn floor_of(rule: [f64; 3]) -> f64 {
+    static SHARE: std::sync::LazyLock<f64> = std::sync::LazyLock::new(|| {
+        std::env::var("IMMERSE_FLOOR_SHARE")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(0.5)
+    });
+    static CAP: std::sync::LazyLock<f64> = std::sync::LazyLock::new(|| {
+        std::env::var("IMMERSE_FLOOR_CAP")
+            .ok()
+            .and_then(|v| v.parse::<f64>().ok())
+            .map_or(STRAIGHT_MIN_ANGLE, f64::to_radians)
+    });
+    CAP.min(*SHARE * rule[0].min(rule[1]).min(rule[2]))
+}
+
+/// The angles (base start, base end, third) of the triangle whose third
+/// vertex has base-frame coordinates `z` (base from 0 to 1), for `z` above
+/// the base.
+fn factor_angles(z: Point) -> [f64; 3] {
+    let ax = z.y.atan2(z.x);
+    let ay = z.y.atan2(1.0 - z.x);
+    [ax, ay, (std::f64::consts::PI - ax - ay).max(0.0)]
+}
+
+/// The nearest point to `z` (a third vertex in base-frame coordinates, the
+/// base from 0 to 1) at which all three angles of the triangle are at least
+/// `floor` (0 < floor < π/3). That set is convex: the wedge above the two
+/// lines from the base ends at angle `floor`, cut by the disc of the
+/// circle through both base ends that sees the base at angle `floor`. So
+/// the nearest point is unique and moves no faster than `z`.
+fn project_to_floor(z: Point, floor: f64) -> Point {
+    if !(floor > 0.0) {
+        return z;
+    }
+    let (c, s) = (floor.cos(), floor.sin());
+    let centre = Point::new(0.5, 0.5 * c / s);
+    let radius = 0.5 / s;
+    let left = c * z.y - s * z.x >= 0.0;
+    let right = c * z.y + s * (z.x - 1.0) >= 0.0;
+    let inside = (z - centre).length_squared() <= radius * radius;
+    if left && right && inside {
+        return z;
+    }
+    // The boundary: two segments from the wedge's apex to where its sides
+    // meet the circle, and the arc between those points.
+    let apex = Point::new(0.5, 0.5 * s / c);
+    let q1 = Point::new(c, s) * (2.0 * c);
+    let q2 = Point::new(1.0, 0.0) + Point::new(-c, s) * (2.0 * c);
+    let on_segment = |a: Point, b: Point| -> Point {
+        let d = b - a;
+        let u = ((z - a).dot(d) / d.length_squared()).clamp(0.0, 1.0);
+        a + d * u
+    };
+    let mut best = on_segment(apex, q1);
+    let other = on_segment(apex, q2);
+    if (other - z).length_squared() < (best - z).length_squared() {
+        best = other;
+    }
+    // The arc from q1 over the top to q2 (counter-clockwise from q2).
+    let r = z - centre;
+    let arc = if r.length_squared() > 0.0 {
+        let a2 = (q2 - centre).to_angle();
+        let a1 = (q1 - centre).to_angle();
+        let a = r.to_angle();
+        // q2 lies right of the centre and q1 left: the upper arc runs from
+        // a2 up to a1 counter-clockwise.
+        let span = (a1 - a2).rem_euclid(TAU);
+        let at = (a - a2).rem_euclid(TAU);
+        if at <= span {
+            Some(centre + Point::from_angle(a) * radius)
+        } else {
+            None
+        }
+    } else {
+        None
+    };
+    if let Some(p) = arc
+        && (p - z).length_squared() < (best - z).length_squared()
+    {
+        best = p;
+    }
+    best
 }
 
 /// Largest error of [`estimate_atan`] (radians), with room to spare: the

@@ -6,6 +6,7 @@ mod curves;
 pub mod flips;
 mod layout;
 mod paths;
+mod rigid;
 mod staged;
 mod target;
 mod tween;

@@ -41,11 +41,20 @@ pub enum ThirdVertexPath {
     /// tries it on the last leg where `hybrid` travels less than
     /// `straight`, and keeps the one whose vertices travel least.
     Polar,
+    /// As rigid as validity allows: every triangle's rotation and stretch
+    /// interpolated separately (rotations unwound along the dual tree) and
+    /// the positions fitted to them by least squares (Alexa, Cohen-Or &
+    /// Levin's as-rigid-as-possible interpolation), projected into the
+    /// valid angle set where that is invalid. Parts turn instead of
+    /// shrinking, spirals wind along their turns, and every t gives an
+    /// immersion.
+    Rigid,
 }
 
 impl ThirdVertexPath {
     /// All paths, in the order of the CLI's possible values.
-    pub const ALL: [ThirdVertexPath; 6] = [
+    pub const ALL: [ThirdVertexPath; 7] = [
+        ThirdVertexPath::Rigid,
         ThirdVertexPath::Hybrid,
         ThirdVertexPath::Straight,
         ThirdVertexPath::Polar,
@@ -64,6 +73,7 @@ impl ThirdVertexPath {
             ThirdVertexPath::Hybrid => "hybrid",
             ThirdVertexPath::Straight => "straight",
             ThirdVertexPath::Polar => "polar",
+            ThirdVertexPath::Rigid => "rigid",
         }
     }
 
@@ -75,6 +85,7 @@ impl ThirdVertexPath {
                 | ThirdVertexPath::Hybrid
                 | ThirdVertexPath::Straight
                 | ThirdVertexPath::Polar
+                | ThirdVertexPath::Rigid
         )
     }
 }
@@ -92,9 +103,8 @@ impl std::str::FromStr for ThirdVertexPath {
             .into_iter()
             .find(|p| p.as_str() == s)
             .ok_or_else(|| {
-                format!(
-                    "unknown path '{s}'; use hybrid, straight, polar, angle, rotate-slide or linear"
-                )
+                let names: Vec<&str> = ThirdVertexPath::ALL.iter().map(|p| p.as_str()).collect();
+                format!("unknown path '{s}'; use {}", names.join(", "))
             })
     }
 }

@@ -57,6 +57,10 @@ pub(crate) struct Leg {
     pub(crate) samples: Vec<f64>,
     /// Cumulative largest vertex move at each sample (0 at the first).
     pub(crate) travel: Vec<f64>,
+    /// The positions at each sample: the leg's keys. Between two keys the
+    /// animation moves every vertex in a straight line
+    /// ([`Leg::refine_keys`] makes them dense enough).
+    pub(crate) keys: Vec<Vec<Point>>,
     /// The mean over vertices of the distance each travels over the
     /// samples (the numerator of the detour).
     pub(crate) mean_travel: f64,
@@ -69,11 +73,13 @@ pub(crate) struct Leg {
 impl Leg {
     /// A leg with only its start sample.
     fn start(plan: Compatible, path: ThirdVertexPath) -> Leg {
+        let first = plan.source().to_vec();
         Leg {
             plan,
             path,
             samples: vec![0.0],
             travel: vec![0.0],
+            keys: vec![first],
             mean_travel: 0.0,
             least_turning: 0.0,
             end_turning: 0.0,
@@ -123,22 +129,98 @@ impl Leg {
         self.travel.last().copied().unwrap_or(0.0)
     }
 
-    /// The local parameter at `d` ∈ [0, length] of the leg's travel.
-    pub(crate) fn param_at(&self, d: f64) -> f64 {
-        let (s, c) = (&self.samples, &self.travel);
-        if s.len() < 2 || d <= 0.0 {
-            return 0.0;
+    /// The key interval at `d` ∈ [0, length] of the leg's travel and the
+    /// fraction of the way through it: `(i, w)` for the straight segment
+    /// from key `i` to key `i + 1`.
+    pub(crate) fn key_at(&self, d: f64) -> (usize, f64) {
+        let c = &self.travel;
+        if c.len() < 2 || d <= 0.0 {
+            return (0, 0.0);
         }
-        let i = c.partition_point(|&x| x < d).clamp(1, s.len() - 1);
+        let i = c.partition_point(|&x| x < d).clamp(1, c.len() - 1);
         let (c0, c1) = (c[i - 1], c[i]);
         let w = if c1 > c0 {
             ((d - c0) / (c1 - c0)).clamp(0.0, 1.0)
         } else {
             1.0
         };
-        s[i - 1] + w * (s[i] - s[i - 1])
+        (i - 1, w)
+    }
+
+    /// Adds keys until the straight segment between every two consecutive
+    /// keys keeps within `tol` of the path at its midpoint (each vertex),
+    /// and sets the travel table from the keys: the largest vertex move of
+    /// each segment, so that frames placed at equal steps of travel move
+    /// the fastest vertex at a constant speed. A segment is split down to
+    /// [`MIN_KEY_STEP`] of the leg; where the path's midpoint fails the
+    /// exact check the segment is kept as it is (output frames are checked
+    /// again). Returns the number of such midpoints.
+    pub(crate) fn refine_keys(&mut self, tol: f64) -> usize {
+        let tris = self.plan.triangles().to_vec();
+        let mut samples = vec![self.samples[0]];
+        let mut keys = vec![self.keys[0].clone()];
+        let mut failed = 0;
+        let old_samples = std::mem::take(&mut self.samples);
+        let old_keys = std::mem::take(&mut self.keys);
+        for i in 1..old_samples.len() {
+            self.split(
+                (old_samples[i - 1], &old_keys[i - 1]),
+                (old_samples[i], &old_keys[i]),
+                &tris,
+                tol,
+                (&mut samples, &mut keys),
+                &mut failed,
+            );
+        }
+        let mut travel = Vec::with_capacity(keys.len());
+        travel.push(0.0);
+        for w in keys.windows(2) {
+            let step = moves(&w[0], &w[1]).0;
+            travel.push(travel.last().copied().unwrap_or(0.0) + step);
+        }
+        self.samples = samples;
+        self.keys = keys;
+        self.travel = travel;
+        failed
+    }
+
+    /// Appends the keys of the segment from `a` to `b` (without `a`'s),
+    /// splitting it at its midpoint while the path strays from the segment
+    /// by more than `tol` there.
+    fn split(
+        &self,
+        a: (f64, &[Point]),
+        b: (f64, &[Point]),
+        tris: &[[u32; 3]],
+        tol: f64,
+        out: (&mut Vec<f64>, &mut Vec<Vec<Point>>),
+        failed: &mut usize,
+    ) {
+        let (out_s, out_k) = out;
+        if b.0 - a.0 > MIN_KEY_STEP {
+            let sm = 0.5 * (a.0 + b.0);
+            let pm = self.plan.positions(sm, self.path);
+            if check_triangles(&pm, tris).is_ok() {
+                let strays = pm
+                    .iter()
+                    .zip(a.1.iter().zip(b.1))
+                    .any(|(m, (p, q))| (*m - (*p + *q) * 0.5).length() > tol);
+                if strays {
+                    self.split(a, (sm, &pm), tris, tol, (&mut *out_s, &mut *out_k), failed);
+                    self.split((sm, &pm), b, tris, tol, (out_s, out_k), failed);
+                    return;
+                }
+            } else {
+                *failed += 1;
+            }
+        }
+        out_s.push(b.0);
+        out_k.push(b.1.to_vec());
     }
 }
+
+/// Finest split of a segment between keys, in the leg's own parameter.
+const MIN_KEY_STEP: f64 = 1.0 / (1u64 << 30) as f64;
 
 /// A staged path from one curve to another (in the first curve's labels).
 #[derive(Clone, Debug)]
@@ -834,6 +916,7 @@ fn record(
     }
     leg.samples.push(s);
     leg.travel.push(leg.length() + step);
+    leg.keys.push(p.clone());
     leg.mean_travel += mean;
     Ok(p)
 }

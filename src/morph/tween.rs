@@ -15,6 +15,11 @@ use crate::frames::{Fallback, Frame, Morph};
 use crate::geom::Point;
 use crate::immersion::check_triangles;
 
+/// How far the straight segment between two keys may stray from the
+/// planned path at its midpoint, as a fraction of the larger end's
+/// bounding-box diagonal (0.25 %).
+pub(crate) const KEY_TOLERANCE: f64 = 0.0025;
+
 /// A planned morph from one curve to another: a verified frame at any t.
 ///
 /// # Examples
@@ -177,11 +182,26 @@ impl Tween {
         };
         // A plan is kept only with a finished side, and that is the one
         // it uses.
-        let staged = staged.ok_or_else(|| MorphError::InvalidFrame {
+        let mut staged = staged.ok_or_else(|| MorphError::InvalidFrame {
             t: 0.0,
             path: options.morph.path,
             defect: "the side kept was given up while planning".to_string(),
         })?;
+        // The keys: the checked samples, split until every straight
+        // segment between two keys keeps close to the path.
+        let diagonal = {
+            let d = crate::geom::polygon::bbox_diagonal;
+            let first = staged.legs.first().and_then(|l| l.keys.first());
+            let last = staged.legs.last().and_then(|l| l.keys.last());
+            first.map_or(0.0, |p| d(p)).max(last.map_or(0.0, |p| d(p)))
+        };
+        {
+            use rayon::prelude::*;
+            let tol = KEY_TOLERANCE * diagonal;
+            staged.legs.par_iter_mut().for_each(|leg| {
+                leg.refine_keys(tol);
+            });
+        }
         fallbacks.extend(staged.fallbacks.iter().cloned());
         let mut paths: Vec<ThirdVertexPath> = Vec::new();
         for leg in &staged.legs {
@@ -246,16 +266,18 @@ impl Tween {
         self.total
     }
 
-    /// The leg and its local parameter at fraction `f` of the travel of
-    /// the side used (0 = that side's curve).
-    fn locate(&self, f: f64) -> (&Leg, f64) {
+    /// The leg, its key interval and the fraction of the way through it
+    /// at fraction `f` of the travel of the side used (0 = that side's
+    /// curve).
+    fn locate(&self, f: f64) -> (&Leg, usize, f64) {
         let legs = &self.staged.legs;
         let last = legs.len() - 1;
         if f >= 1.0 || self.total <= 0.0 && f >= 0.5 {
-            return (&legs[last], legs[last].s_end());
+            let k = legs[last].keys.len().saturating_sub(2);
+            return (&legs[last], k, 1.0);
         }
         if f <= 0.0 || self.total <= 0.0 {
-            return (&legs[0], 0.0);
+            return (&legs[0], 0, 0.0);
         }
         let d = f * self.total;
         // The last leg that starts at or before d.
@@ -265,7 +287,8 @@ impl Tween {
             .clamp(1, legs.len())
             - 1;
         let leg = &legs[i];
-        (leg, leg.param_at(d - self.offsets[i]))
+        let (k, w) = leg.key_at(d - self.offsets[i]);
+        (leg, k, w)
     }
 
     /// The frame at fraction `t` ∈ [0, 1] of the total vertex travel
@@ -293,39 +316,73 @@ impl Tween {
             return Err(MorphError::Fraction(t));
         }
         let f = if self.reversed { 1.0 - t } else { t };
-        let (leg, s) = self.locate(f);
+        let (leg, k, w) = self.locate(f);
         let tris = leg.plan.triangles();
-        let mut first_defect = None;
-        let mut found = None;
-        for path in recovery_paths(leg.path) {
-            let p = leg.plan.positions(s, path);
-            match check_triangles(&p, tris) {
-                Ok(()) => {
-                    found = Some((p, path));
-                    break;
-                }
-                Err(e) => {
-                    first_defect.get_or_insert((path, e));
-                }
+        // The animation: every vertex on a straight line between two keys.
+        let keys = &leg.keys;
+        let between = |k: usize| -> Vec<Point> {
+            let a = &keys[k];
+            let Some(b) = keys.get(k + 1) else {
+                return a.clone();
+            };
+            if w <= 0.0 {
+                a.clone()
+            } else if w >= 1.0 {
+                b.clone()
+            } else {
+                a.iter().zip(b).map(|(p, q)| p.lerp(*q, w)).collect()
             }
-        }
-        let Some((points, path)) = found else {
-            let (path, e) = first_defect
-                .unwrap_or((leg.path, crate::immersion::ImmersionDefect::TooFewPoints(0)));
-            return Err(MorphError::InvalidFrame {
-                t,
-                path,
-                defect: e.to_string(),
-            });
         };
-        let fallback = (path != leg.path).then(|| {
-            Fallback::new(
-                &format!("used the {path} path for the frame at t = {t}"),
-                &first_defect.map_or(String::new(), |(p, e)| {
-                    format!("the {p} path gave an invalid frame ({e})")
-                }),
-            )
-        });
+        let interpolated = between(k);
+        let (points, fallback) = match check_triangles(&interpolated, tris) {
+            Ok(()) => (interpolated, None),
+            Err(defect) => {
+                // The segment between the keys is not an immersion here:
+                // the path itself at this t, with the guaranteed paths in
+                // turn.
+                let samples = &leg.samples;
+                let s = match samples.get(k + 1) {
+                    Some(&s1) => samples[k] + w * (s1 - samples[k]),
+                    None => samples[k],
+                };
+                let mut first_defect = None;
+                let mut found = None;
+                for path in recovery_paths(leg.path) {
+                    let p = leg.plan.positions(s, path);
+                    match check_triangles(&p, tris) {
+                        Ok(()) => {
+                            found = Some((p, path));
+                            break;
+                        }
+                        Err(e) => {
+                            first_defect.get_or_insert((path, e));
+                        }
+                    }
+                }
+                let Some((points, path)) = found else {
+                    let (path, e) = first_defect.unwrap_or((leg.path, defect));
+                    return Err(MorphError::InvalidFrame {
+                        t,
+                        path,
+                        defect: e.to_string(),
+                    });
+                };
+                let what = if path == leg.path {
+                    format!("used the {path} path itself for the frame at t = {t}")
+                } else {
+                    format!("used the {path} path for the frame at t = {t}")
+                };
+                let why = match first_defect {
+                    Some((p, e)) => format!(
+                        "the straight segment between two keys was not an immersion there ({defect}), nor the {p} path ({e})"
+                    ),
+                    None => format!(
+                        "the straight segment between two keys was not an immersion there ({defect})"
+                    ),
+                };
+                (points, Some(Fallback::new(&what, &why)))
+            }
+        };
         let frame = if self.reversed {
             let (n, k) = (self.n, self.shift);
             Frame {

@@ -377,6 +377,8 @@ pub(crate) struct TriangulateArgs {
 /// Third-vertex path of the morph.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum PathArg {
+    /// As rigid as validity allows: each triangle's rotation and stretch interpolated, positions by least squares; parts turn instead of shrinking, spirals wind (guaranteed).
+    Rigid,
     /// Rotate-slide angles blended just enough to stay an immersion (guaranteed).
     Hybrid,
     /// As straight as validity allows: linear where the linear morph is valid; on the last leg it competes with hybrid and polar (guaranteed).

@@ -20,6 +20,7 @@ const MAX_FRAME_POINTS: usize = 50_000_000;
 impl From<PathArg> for ThirdVertexPath {
     fn from(p: PathArg) -> ThirdVertexPath {
         match p {
+            PathArg::Rigid => ThirdVertexPath::Rigid,
             PathArg::Hybrid => ThirdVertexPath::Hybrid,
             PathArg::Straight => ThirdVertexPath::Straight,
             PathArg::Polar => ThirdVertexPath::Polar,

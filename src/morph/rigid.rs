@@ -1,0 +1,421 @@
+//! The as-rigid-as-possible guide (docs/design.md §6, the `rigid` path;
+//! Alexa, Cohen-Or & Levin, *As-Rigid-As-Possible Shape Interpolation*).
+//!
+//! Each triangle's linear map from the source to the end, A = R(θ)S (polar
+//! decomposition: a rotation and a symmetric positive stretch), is
+//! interpolated as A(t) = R(tθ)S^t: the rotation and the stretch
+//! separately, so a turning part turns instead of shrinking through its
+//! centre. The stretch is interpolated geometrically (its eigenvalues
+//! λᵗ), where Alexa et al. interpolate it linearly ((1 − t)I + tS): then a
+//! triangle's area moves monotonically between its ends' instead of
+//! swelling past both when it is stretched one way and squeezed the other. The positions at t are the least-squares fit of every
+//! triangle's map to its A(t), weighted by source area (a sparse system
+//! whose matrix does not depend on t).
+//!
+//! The rotations are unwound along the dual tree: each triangle's θ is
+//! taken within half a turn of its parent's, not in (−π, π], so a strip
+//! that winds several turns further at one end than at the other winds up
+//! along its turns. The whole vector of rotations is then shifted by the
+//! whole turns that put its area-weighted median in (−π, π].
+//!
+//! The system is solved in O(n) per frame: a triangulated polygon (no
+//! interior vertex) always has an ear, a vertex in one triangle, whose two
+//! neighbours are adjacent, so eliminating ears one by one creates no
+//! fill-in. The matrix is factored once.
+
+use crate::geom::Point;
+use crate::tree::Rooted;
+use rustc_hash::FxHashMap;
+use std::f64::consts::{PI, TAU};
+
+/// Per triangle: its corners, its area-weighted gradient operator and its
+/// interpolated map's rotation and stretch.
+#[derive(Clone, Debug)]
+struct Element {
+    corners: [usize; 3],
+    /// w·K where K = D F⁻¹ (3 × 2): row k is the gradient of corner k's
+    /// hat function on the source triangle, w its area.
+    wk: [[f64; 2]; 3],
+    /// The source area w.
+    area: f64,
+    /// The unwound rotation angle θ.
+    theta: f64,
+    /// The stretch S = Q diag(e^l₁, e^l₂) Qᵀ: the angle of Q's first
+    /// column and the logarithms of the eigenvalues.
+    stretch: (f64, [f64; 2]),
+}
+
+/// One elimination step: vertex `v`, its pivot, and the multipliers of its
+/// (at most two) remaining neighbours.
+#[derive(Clone, Debug)]
+struct Step {
+    v: usize,
+    pivot: f64,
+    next: [(usize, f64); 2],
+    count: usize,
+}
+
+/// The as-rigid-as-possible interpolation between two shapes sharing a
+/// triangulation, factored once, evaluated at any t in O(n).
+#[derive(Clone, Debug)]
+pub(crate) struct RigidGuide {
+    elements: Vec<Element>,
+    steps: Vec<Step>,
+    /// The vertex held at the origin while solving.
+    pinned: usize,
+    means: [Point; 2],
+    n: usize,
+}
+
+impl RigidGuide {
+    /// The interpolation from `src` to the end whose triangle `i` has edge
+    /// vectors `ends[i]` (from its first corner to its second and third,
+    /// corners as in `rooted`'s triangulation `triangles`), with the ends'
+    /// vertex means `means`. Every triangle must be counter-clockwise on
+    /// `src` and every end edge pair counter-clockwise; `None` where the
+    /// system cannot be factored in floating point (a degenerate source).
+    pub(crate) fn new(
+        src: &[Point],
+        triangles: &[[u32; 3]],
+        ends: &[[Point; 2]],
+        rooted: &Rooted,
+        means: [Point; 2],
+    ) -> Option<RigidGuide> {
+        let n = src.len();
+        let m = triangles.len();
+        let mut raw = Vec::with_capacity(m);
+        for (t, tri) in triangles.iter().enumerate() {
+            let c = tri.map(|v| v as usize);
+            let (f0, f1) = (src[c[1]] - src[c[0]], src[c[2]] - src[c[0]]);
+            let det = f0.perp_dot(f1);
+            if !(det > 0.0 && det.is_finite()) {
+                return None;
+            }
+            // F⁻¹ with F = [f0 f1] (columns).
+            let inv = [[f1.y / det, -f1.x / det], [-f0.y / det, f0.x / det]];
+            // K = D F⁻¹, D = [[-1, -1], [1, 0], [0, 1]].
+            let k1 = inv[0];
+            let k2 = inv[1];
+            let k0 = [-k1[0] - k2[0], -k1[1] - k2[1]];
+            let w = 0.5 * det;
+            let wk = [k0, k1, k2].map(|r| [w * r[0], w * r[1]]);
+            // A = G F⁻¹, G = [g0 g1] (columns).
+            let [g0, g1] = ends[t];
+            let a = [
+                [g0.x * inv[0][0] + g1.x * inv[1][0], g0.x * inv[0][1] + g1.x * inv[1][1]],
+                [g0.y * inv[0][0] + g1.y * inv[1][0], g0.y * inv[0][1] + g1.y * inv[1][1]],
+            ];
+            let theta = (a[1][0] - a[0][1]).atan2(a[0][0] + a[1][1]);
+            let (co, si) = (theta.cos(), theta.sin());
+            // S = R(−θ) A, symmetrised (it is symmetric up to rounding).
+            let s11 = co * a[0][0] + si * a[1][0];
+            let s12 = 0.5 * ((co * a[0][1] + si * a[1][1]) + (-si * a[0][0] + co * a[1][0]));
+            let s22 = -si * a[0][1] + co * a[1][1];
+            // Eigen-decomposition of the symmetric S: its eigenvalues are
+            // positive where the end triangle is counter-clockwise.
+            let mean = 0.5 * (s11 + s22);
+            let radius = (0.5 * (s11 - s22)).hypot(s12);
+            let (l1, l2) = (mean + radius, mean - radius);
+            if !(l2 > 0.0 && l1.is_finite()) {
+                return None;
+            }
+            let alpha = 0.5 * (2.0 * s12).atan2(s11 - s22);
+            raw.push(Element {
+                corners: c,
+                wk,
+                area: w,
+                theta,
+                stretch: (alpha, [l1.ln(), l2.ln()]),
+            });
+        }
+        // Unwind the rotations along the dual tree, parents first.
+        for &t in &rooted.order {
+            if let Some(p) = rooted.parent[t] {
+                let base = raw[p].theta;
+                let d = (raw[t].theta - base + PI).rem_euclid(TAU) - PI;
+                raw[t].theta = base + d;
+            }
+        }
+        // Whole turns: the area-weighted median rotation into (−π, π].
+        let mut weighted: Vec<(f64, f64)> = raw.iter().map(|e| (e.theta, e.area)).collect();
+        weighted.sort_by(|x, y| x.0.total_cmp(&y.0));
+        let half = weighted.iter().map(|x| x.1).sum::<f64>() / 2.0;
+        let mut acc = 0.0;
+        let mut median = 0.0;
+        for &(theta, w) in &weighted {
+            acc += w;
+            if acc >= half {
+                median = theta;
+                break;
+            }
+        }
+        let turns = ((median + PI) / TAU).floor();
+        if turns != 0.0 {
+            raw.iter_mut().for_each(|e| e.theta -= turns * TAU);
+        }
+        let (steps, pinned) = factor(n, &raw)?;
+        Some(RigidGuide {
+            elements: raw,
+            steps,
+            pinned,
+            means,
+            n,
+        })
+    }
+
+    /// The guide's positions at `t` ∈ [0, 1]: the least-squares positions
+    /// moved so that their vertex mean is the ends' means interpolated
+    /// linearly.
+    pub(crate) fn at(&self, t: f64) -> Vec<Point> {
+        let mut b = vec![Point::ZERO; self.n];
+        for e in &self.elements {
+            // A(t) = R(tθ) S^t: the stretch interpolated geometrically, so
+            // each triangle's area and its principal stretches move
+            // monotonically between the ends' (never ballooning past both).
+            let (alpha, [l1, l2]) = e.stretch;
+            let (e1, e2) = ((t * l1).exp(), (t * l2).exp());
+            let (ca, sa) = (alpha.cos(), alpha.sin());
+            let m = [
+                [e1 * ca * ca + e2 * sa * sa, (e1 - e2) * ca * sa],
+                [(e1 - e2) * ca * sa, e1 * sa * sa + e2 * ca * ca],
+            ];
+            let (co, si) = ((t * e.theta).cos(), (t * e.theta).sin());
+            let a = [
+                [co * m[0][0] - si * m[1][0], co * m[0][1] - si * m[1][1]],
+                [si * m[0][0] + co * m[1][0], si * m[0][1] + co * m[1][1]],
+            ];
+            // Right-hand side: w K Aᵣᵀ for each coordinate row r.
+            for (k, &v) in e.corners.iter().enumerate() {
+                let g = e.wk[k];
+                b[v].x += g[0] * a[0][0] + g[1] * a[0][1];
+                b[v].y += g[0] * a[1][0] + g[1] * a[1][1];
+            }
+        }
+        let mut x = solve(&self.steps, self.pinned, b);
+        let n = self.n as f64;
+        let mean = x.iter().copied().sum::<Point>() / n;
+        let goal = self.means[0].lerp(self.means[1], t);
+        x.iter_mut().for_each(|p| *p += goal - mean);
+        x
+    }
+}
+
+/// Assembles the matrix Σ w K Kᵀ and factors it by eliminating ears in
+/// turn (no fill-in), holding one vertex of the last triangle at zero.
+/// Returns the steps and the held vertex; `None` when a pivot is not
+/// positive in floating point.
+fn factor(n: usize, elements: &[Element]) -> Option<(Vec<Step>, usize)> {
+    let mut diag = vec![0.0; n];
+    let key = |a: usize, b: usize| -> u64 {
+        let (lo, hi) = if a < b { (a, b) } else { (b, a) };
+        ((lo as u64) << 32) | hi as u64
+    };
+    let mut off: FxHashMap<u64, f64> = FxHashMap::default();
+    off.reserve(3 * elements.len());
+    // Triangles of each vertex, to find ears.
+    let mut count = vec![0usize; n];
+    let mut of_vertex: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for (t, e) in elements.iter().enumerate() {
+        for i in 0..3 {
+            let (vi, gi) = (e.corners[i], e.wk[i]);
+            count[vi] += 1;
+            of_vertex[vi].push(t);
+            for j in 0..3 {
+                let (vj, gj) = (e.corners[j], e.wk[j]);
+                // (w K Kᵀ)_ij = (wK)_i · K_j = (wK)_i · (wK)_j / w; w = area.
+                let value = (gi[0] * gj[0] + gi[1] * gj[1]) / e.area;
+                if i == j {
+                    diag[vi] += value;
+                } else if i < j {
+                    *off.entry(key(vi, vj)).or_insert(0.0) += value;
+                }
+            }
+        }
+    }
+    // The vertex held at zero: a corner of some triangle; it is never
+    // eliminated.
+    let pinned = elements.first().map_or(0, |e| e.corners[0]);
+    let mut alive = vec![true; elements.len()];
+    let mut ears: Vec<usize> = (0..n).filter(|&v| count[v] == 1 && v != pinned).collect();
+    let mut eliminated = vec![false; n];
+    let mut steps = Vec::with_capacity(n);
+    while let Some(v) = ears.pop() {
+        if eliminated[v] || count[v] != 1 {
+            continue;
+        }
+        let Some(&t) = of_vertex[v].iter().find(|&&t| alive[t]) else {
+            continue;
+        };
+        alive[t] = false;
+        eliminated[v] = true;
+        let others: Vec<usize> = elements[t]
+            .corners
+            .iter()
+            .copied()
+            .filter(|&u| u != v)
+            .collect();
+        let pivot = diag[v];
+        if !(pivot > 0.0 && pivot.is_finite()) {
+            return None;
+        }
+        let mut next = [(0usize, 0.0f64); 2];
+        let mut k = 0;
+        for &u in &others {
+            count[u] -= 1;
+            if u == pinned {
+                continue;
+            }
+            let l = off.get(&key(u, v)).copied().unwrap_or(0.0);
+            next[k] = (u, l / pivot);
+            k += 1;
+            diag[u] -= l * l / pivot;
+        }
+        if k == 2 {
+            let (u, mu) = next[0];
+            let (w, _) = next[1];
+            let lw = off.get(&key(w, v)).copied().unwrap_or(0.0);
+            *off.entry(key(u, w)).or_insert(0.0) -= mu * lw;
+        }
+        steps.push(Step {
+            v,
+            pivot,
+            next,
+            count: k,
+        });
+        for &u in &others {
+            if u != pinned && !eliminated[u] && count[u] == 1 {
+                ears.push(u);
+            }
+        }
+    }
+    // Vertices left (the last triangle's, other than the pinned one) are
+    // eliminated with no neighbour left.
+    for v in 0..n {
+        if v == pinned || eliminated[v] {
+            continue;
+        }
+        let pivot = diag[v];
+        if !(pivot > 0.0 && pivot.is_finite()) {
+            return None;
+        }
+        eliminated[v] = true;
+        steps.push(Step {
+            v,
+            pivot,
+            next: [(0, 0.0); 2],
+            count: 0,
+        });
+    }
+    Some((steps, pinned))
+}
+
+/// Solves the factored system for the right-hand side `b` (both
+/// coordinates at once), with the pinned vertex at zero.
+fn solve(steps: &[Step], pinned: usize, mut b: Vec<Point>) -> Vec<Point> {
+    for s in steps {
+        let bv = b[s.v];
+        for &(u, mu) in &s.next[..s.count] {
+            b[u] -= bv * mu;
+        }
+    }
+    let mut x = vec![Point::ZERO; b.len()];
+    for s in steps.iter().rev() {
+        let mut value = b[s.v] / s.pivot;
+        for &(u, mu) in &s.next[..s.count] {
+            value -= x[u] * mu;
+        }
+        x[s.v] = value;
+    }
+    x[pinned] = Point::ZERO;
+    x
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::morph::compatible::tests::{Rng, random_immersed_disk, random_triangulation};
+    use crate::tree::DualTree;
+
+    fn edges(p: &[Point], tris: &[[u32; 3]]) -> Vec<[Point; 2]> {
+        tris.iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|v| p[v as usize]);
+                [b - a, c - a]
+            })
+            .collect()
+    }
+
+    fn mean(p: &[Point]) -> Point {
+        p.iter().copied().sum::<Point>() / p.len() as f64
+    }
+
+    /// At t = 0 the guide is the source and at t = 1 the end, on random
+    /// immersed disks; a turned and scaled copy is turned and scaled
+    /// rigidly at every t.
+    #[test]
+    fn ends_are_reproduced_and_similarities_interpolate_rigidly() {
+        let mut rng = Rng(0x5eed_41a9);
+        for case in 0..40 {
+            let n = 4 + (rng.next() * 60.0) as usize;
+            let tris = random_triangulation(n as u32, &mut rng);
+            let a = random_immersed_disk(n, &tris, 3.0, &mut rng);
+            let b = random_immersed_disk(n, &tris, 3.0, &mut rng);
+            let tree = DualTree::new(n, &tris).unwrap();
+            let rooted = tree.rooted(0);
+            let g = RigidGuide::new(&a, &tris, &edges(&b, &tris), &rooted, [mean(&a), mean(&b)])
+                .unwrap();
+            let scale = a
+                .iter()
+                .chain(&b)
+                .map(|p| p.length())
+                .fold(0.0, f64::max);
+            for (t, want) in [(0.0, &a), (1.0, &b)] {
+                let got = g.at(t);
+                for (p, q) in got.iter().zip(want) {
+                    assert!((*p - *q).length() <= 1e-9 * scale, "case {case} t {t}");
+                }
+            }
+            // A similarity: every frame is the source turned by tθ and
+            // scaled by kᵗ.
+            let turn = 2.5;
+            let k = 1.7;
+            let rot = Point::from_angle(turn) * k;
+            let c: Vec<Point> = a.iter().map(|p| rot.rotate(*p)).collect();
+            let g = RigidGuide::new(&a, &tris, &edges(&c, &tris), &rooted, [mean(&a), mean(&c)])
+                .unwrap();
+            let t = 0.3;
+            let got = g.at(t);
+            let s = Point::from_angle(t * turn) * k.powf(t);
+            let ma = mean(&a);
+            let goal = ma.lerp(mean(&c), t);
+            for (p, q) in got.iter().zip(&a) {
+                let want = goal + s.rotate(*q - ma);
+                assert!((*p - want).length() <= 1e-9 * scale, "case {case}");
+            }
+        }
+    }
+
+    /// A strip wound one more turn at its far end: the far triangles turn
+    /// by more than half a turn, and the guide winds them (their rotation
+    /// is unwound along the tree, not taken in (−π, π]).
+    #[test]
+    fn rotations_are_unwound_along_the_tree() {
+        use crate::morph::compatible::tests::spiral_strip;
+        let (a, tris) = spiral_strip(40, 0.25, 0.3);
+        let (b, tris_b) = spiral_strip(40, 1.25, 0.3);
+        assert_eq!(tris, tris_b);
+        let n = a.len();
+        let tree = DualTree::new(n, &tris).unwrap();
+        let rooted = tree.rooted(0);
+        let g = RigidGuide::new(&a, &tris, &edges(&b, &tris), &rooted, [mean(&a), mean(&b)])
+            .unwrap();
+        let spread = g
+            .elements
+            .iter()
+            .map(|e| e.theta)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+                (lo.min(x), hi.max(x))
+            });
+        assert!(spread.1 - spread.0 > 1.5 * PI, "{spread:?}");
+    }
+}

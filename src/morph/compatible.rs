@@ -35,7 +35,7 @@ pub const STRAIGHT_MIN_ANGLE: f64 = 0.5 * std::f64::consts::PI / 180.0;
 /// total area between these multiples of the smaller and the larger
 /// endpoint's: a linear interpolation may shrink a little in the middle, as
 /// animators expect, but never collapse.
-pub const STRAIGHT_AREA_RANGE: (f64, f64) = (0.5, 2.0);
+pub const STRAIGHT_AREA_RANGE: (f64, f64) = (0.81, 1.13);
 
 /// Precomputed data for morphing one compatible pair.
 #[derive(Clone, Debug)]

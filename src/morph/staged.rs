@@ -205,7 +205,17 @@ impl Leg {
                     .iter()
                     .zip(a.1.iter().zip(b.1))
                     .any(|(m, (p, q))| (*m - (*p + *q) * 0.5).length() > tol);
-                if strays {
+                // The straight segment also keeps the path's total area
+                // (a thin strip turning can lose much of its area along a
+                // chord that keeps within `tol`).
+                let shrinks = || {
+                    let mid: Vec<Point> =
+                        a.1.iter().zip(b.1).map(|(p, q)| p.lerp(*q, 0.5)).collect();
+                    let (on_path, on_chord) =
+                        (area_and_centroid(&pm, tris).0, area_and_centroid(&mid, tris).0);
+                    (on_chord - on_path).abs() > KEY_AREA_TOLERANCE * on_path.abs()
+                };
+                if strays || shrinks() || !segment_looks_valid(a.1, b.1, tris) {
                     self.split(a, (sm, &pm), tris, tol, (&mut *out_s, &mut *out_k), failed);
                     self.split((sm, &pm), b, tris, tol, (out_s, out_k), failed);
                     return;
@@ -218,6 +228,77 @@ impl Leg {
         out_k.push(b.1.to_vec());
     }
 }
+
+/// Whether the straight-line motion from `a` to `b` keeps every triangle
+/// counter-clockwise and no vertex fan reaches a full turn, judged in
+/// floating point (a triangle's doubled area is a quadratic in the motion's
+/// parameter; a fan can only reach 2π where its two boundary edges point
+/// the same way). Only a reason to split a segment: frames are checked
+/// exactly.
+fn segment_looks_valid(a: &[Point], b: &[Point], tris: &[[u32; 3]]) -> bool {
+    let positive = |c2: f64, c1: f64, c0: f64| -> bool {
+        if !(c0 > 0.0 && c2 + c1 + c0 > 0.0) {
+            return false;
+        }
+        if c2 > 0.0 {
+            let s = -c1 / (2.0 * c2);
+            if s > 0.0 && s < 1.0 {
+                return 4.0 * c2 * c0 - c1 * c1 > 0.0;
+            }
+        }
+        true
+    };
+    // The quadratic of cross(e(s), f(s)) with e, f moving linearly.
+    let cross = |e0: Point, e1: Point, f0: Point, f1: Point| -> [f64; 3] {
+        let (de, df) = (e1 - e0, f1 - f0);
+        [
+            de.perp_dot(df),
+            e0.perp_dot(df) + de.perp_dot(f0),
+            e0.perp_dot(f0),
+        ]
+    };
+    for t in tris {
+        let [x, y, z] = t.map(|v| v as usize);
+        let [c2, c1, c0] = cross(a[y] - a[x], b[y] - b[x], a[z] - a[x], b[z] - b[x]);
+        if !positive(c2, c1, c0) {
+            return false;
+        }
+    }
+    let n = a.len();
+    for v in 0..n {
+        let (next, prev) = ((v + 1) % n, (v + n - 1) % n);
+        let (e0, e1) = (a[next] - a[v], b[next] - b[v]);
+        let (f0, f1) = (a[prev] - a[v], b[prev] - b[v]);
+        let [c2, c1, c0] = cross(e0, e1, f0, f1);
+        let dot = |s: f64| (e0.lerp(e1, s)).dot(f0.lerp(f1, s));
+        let mut roots = Vec::with_capacity(2);
+        if c2 != 0.0 {
+            let disc = c1 * c1 - 4.0 * c2 * c0;
+            if disc >= 0.0 {
+                let q = -0.5 * (c1 + c1.signum() * disc.sqrt());
+                roots.push(q / c2);
+                if q != 0.0 {
+                    roots.push(c0 / q);
+                }
+            }
+        } else if c1 != 0.0 {
+            roots.push(-c0 / c1);
+        } else if c0 == 0.0 && !(dot(0.0) < 0.0 && dot(1.0) < 0.0 && dot(0.5) < 0.0) {
+            return false;
+        }
+        if roots
+            .into_iter()
+            .any(|r| (0.0..=1.0).contains(&r) && dot(r) >= 0.0)
+        {
+            return false;
+        }
+    }
+    true
+}
+
+/// How much the total area of a straight segment's midpoint may differ
+/// from the path's there, relative to the path's (1 %).
+const KEY_AREA_TOLERANCE: f64 = 0.01;
 
 /// Finest split of a segment between keys, in the leg's own parameter.
 const MIN_KEY_STEP: f64 = 1.0 / (1u64 << 30) as f64;
@@ -729,8 +810,20 @@ fn last_leg(
     // kept, unless it unwinds overlaps another keeps (`Leg::beats`); each
     // rival is given up as soon as it cannot win, and the polar path is
     // tried only where the straight leg did not win over the hybrid one.
-    let mut candidates = recovery_paths(inp.final_path);
-    let compete = inp.final_path == ThirdVertexPath::Straight;
+    let rigid = inp.final_path == ThirdVertexPath::Rigid;
+    let mut candidates = if rigid && std::env::var("COMPETE").is_ok() {
+        vec![
+            ThirdVertexPath::Rigid,
+            ThirdVertexPath::Straight,
+            ThirdVertexPath::Polar,
+            ThirdVertexPath::Hybrid,
+            ThirdVertexPath::Angle,
+        ]
+    } else {
+        recovery_paths(inp.final_path)
+    };
+    let compete = inp.final_path == ThirdVertexPath::Straight
+        || (rigid && std::env::var("COMPETE").is_ok());
     let last_rival = ThirdVertexPath::Polar;
     let mut best: Option<(Leg, usize)> = None;
     // The first path when it passed the limit before a rival was tried.
@@ -742,6 +835,7 @@ fn last_leg(
         // The polar path is for windings that straight lines cut across;
         // where the straight leg beat the hybrid one there is none.
         if compete
+            && !rigid
             && path == ThirdVertexPath::Polar
             && rival.is_some_and(|r| r.plan_path() == ThirdVertexPath::Straight)
         {

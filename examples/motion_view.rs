@@ -38,6 +38,7 @@ struct Row {
     detour: f64,
     unwind: f64,
     ms: f64,
+    path: String,
     error: Option<String>,
 }
 
@@ -93,6 +94,7 @@ fn measure(name: String, a: &[immerse::Point], b: &[immerse::Point], options: &C
         detour: f64::NAN,
         unwind: f64::NAN,
         ms: 0.0,
+        path: String::new(),
         error: None,
     };
     let tween = match Tween::new(a, b, options) {
@@ -104,6 +106,13 @@ fn measure(name: String, a: &[immerse::Point], b: &[immerse::Point], options: &C
     };
     row.ms = start.elapsed().as_secs_f64() * 1e3;
     row.n = tween.vertex_count();
+    row.path = tween
+        .report()
+        .paths
+        .iter()
+        .map(|p| p.as_str())
+        .collect::<Vec<_>>()
+        .join("+");
     let frames = |k: usize| -> Result<Vec<Frame>, String> {
         tween
             .morph(&fractions(k))
@@ -218,16 +227,16 @@ fn main() {
     let only_failures = args.iter().any(|a| a == "--failures");
     if show_rows || only_failures {
         println!(
-            "| pair | n | step 40 | step 320 | step 2560 | edge | area low | area high | angle | distortion | detour | unwind | ms | misses |"
+            "| pair | n | step 40 | step 320 | step 2560 | edge | area low | area high | angle | distortion | detour | unwind | ms | path | misses |"
         );
-        println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+        println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
         for r in &rows {
             let misses = r.misses();
             if only_failures && misses.is_empty() {
                 continue;
             }
             println!(
-                "| {} | {} | {:.4} | {:.4} | {:.4} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.0} | {} |",
+                "| {} | {} | {:.4} | {:.4} | {:.4} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.0} | {} | {} |",
                 r.name,
                 r.n,
                 r.steps[0],
@@ -241,6 +250,7 @@ fn main() {
                 r.detour,
                 r.unwind,
                 r.ms,
+                r.path,
                 r.error.clone().unwrap_or_else(|| misses.join(" "))
             );
         }

@@ -557,8 +557,20 @@ impl Compatible {
                 .map(|tri| {
                     let [a, b, c] = tri.map(|v| v as usize);
                     let e = &self.guide_end;
-                    if crate::geom::orient(e[a], e[b], e[c]).is_ccw() {
+                    if std::env::var("PUREDST").is_err() && crate::geom::orient(e[a], e[b], e[c]).is_ccw() {
                         [e[b] - e[a], e[c] - e[a]]
+                    } else if std::env::var("MIRROR").is_ok() {
+                        // Mirror the apex over the base: the same shape
+                        // counter-clockwise.
+                        let (u, v) = (e[b] - e[a], e[c] - e[a]);
+                        let l2 = u.length_squared();
+                        let along = u * (v.dot(u) / l2);
+                        let across = v - along;
+                        let mut m = along - across;
+                        if u.perp_dot(m) <= 0.0 {
+                            m = along + u.perp() * 1e-3;
+                        }
+                        [u, m]
                     } else {
                         let d = &self.dst;
                         [d[b] - d[a], d[c] - d[a]]

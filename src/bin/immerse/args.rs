@@ -199,15 +199,72 @@ pub(crate) struct ServeArgs {
     /// Open the page in the default browser.
     #[arg(long)]
     pub(crate) open: bool,
-    /// Most morphs (and other heavy jobs) running at once; more get HTTP 429.
+    /// What the server bounds (README, "Playground": each limit and its answer).
+    #[command(flatten)]
+    pub(crate) limits: ServeLimits,
+}
+
+/// The limits of `immerse serve`: every resource a client can make the
+/// server spend is bounded by one of these.
+#[derive(Debug, Clone, Args)]
+#[command(next_help_heading = "Limits")]
+pub(crate) struct ServeLimits {
+    /// Most jobs at once: checks, morphs and every download (a frame, GIF,
+    /// SVG, Lottie or JSON file); a request waits for a free slot.
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=64))]
     pub(crate) max_jobs: u32,
-    /// Seconds a request waits for its morph before answering HTTP 503.
-    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    /// Seconds a job may take, the wait for its slot included; then HTTP
+    /// 503, and the job stops (a morph's planning runs to its end first).
+    #[arg(long, value_name = "SECONDS", default_value_t = 60, value_parser = clap::value_parser!(u64).range(1..=3600))]
     pub(crate) job_timeout: u64,
-    /// For tests: every job sleeps this many milliseconds before it starts.
-    #[arg(long, default_value_t = 0, hide = true)]
-    pub(crate) job_delay_ms: u64,
+    /// MiB of finished morphs kept for their frames and downloads; the
+    /// oldest are dropped first, and a larger morph gets HTTP 413.
+    #[arg(long, value_name = "MIB", default_value_t = 256, value_parser = clap::value_parser!(u64).range(1..=65536))]
+    pub(crate) job_memory: u64,
+    /// Most open connections; past it the longest-idle connection is
+    /// closed, or when none is idle the new one gets HTTP 503.
+    #[arg(long, default_value_t = 128, value_parser = clap::value_parser!(u32).range(2..=10000))]
+    pub(crate) max_connections: u32,
+    /// Seconds a client has to send a request's headers; also how long an
+    /// idle connection is kept open.
+    #[arg(long, value_name = "SECONDS", default_value_t = 10, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    pub(crate) header_timeout: u64,
+    /// Largest request head (request line and headers), in bytes; larger
+    /// get HTTP 431.
+    #[arg(long, value_name = "BYTES", default_value_t = 16384, value_parser = clap::value_parser!(u32).range(1024..=1_048_576))]
+    pub(crate) max_header_bytes: u32,
+    /// Most header lines in one request; more get HTTP 431.
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(8..=1000))]
+    pub(crate) max_headers: u32,
+    /// Seconds a client has to send a request body once its job has a
+    /// slot; then HTTP 408.
+    #[arg(long, value_name = "SECONDS", default_value_t = 10, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    pub(crate) body_timeout: u64,
+    /// Largest request body, in bytes; larger get HTTP 413 (before the
+    /// body is read when its length is announced, else while reading).
+    #[arg(long, value_name = "BYTES", default_value_t = 2 << 20, value_parser = clap::value_parser!(u32).range(1024..=268_435_456))]
+    pub(crate) max_body_bytes: u32,
+    /// Seconds a response may wait for a client that stopped reading it;
+    /// then the connection is closed.
+    #[arg(long, value_name = "SECONDS", default_value_t = 20, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    pub(crate) write_timeout: u64,
+    /// Most points in one curve (as sent, or read from a file's text);
+    /// more get HTTP 413.
+    #[arg(long, default_value_t = 5000, value_parser = clap::value_parser!(u32).range(3..=200_000))]
+    pub(crate) max_points: u32,
+    /// Most frames of one morph; more get HTTP 400.
+    #[arg(long, default_value_t = 240, value_parser = clap::value_parser!(u32).range(2..=100_000))]
+    pub(crate) max_frames: u32,
+    /// Most curves (keys) in one morph; more get HTTP 400.
+    #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u32).range(2..=64))]
+    pub(crate) max_curves: u32,
+    /// Largest image side, in pixels; larger get HTTP 400.
+    #[arg(long, value_name = "PIXELS", default_value_t = 2048, value_parser = clap::value_parser!(u32).range(16..=8192))]
+    pub(crate) max_side: u32,
+    /// Seconds Ctrl-C waits for the requests in flight before the server
+    /// stops.
+    #[arg(long, value_name = "SECONDS", default_value_t = 5, value_parser = clap::value_parser!(u64).range(0..=600))]
+    pub(crate) drain_timeout: u64,
 }
 
 /// Mesh morph method.

@@ -19,9 +19,29 @@ impl Server {
     /// Starts the binary at `bin` with `extra` arguments; stderr is kept
     /// in a pipe only when `stderr` is set (else discarded).
     pub fn start_with(bin: &str, extra: &[&str], stderr: bool) -> Server {
-        let mut child = Command::new(bin)
+        let mut command = Command::new(bin);
+        command.args(["serve", "--port", "0"]).args(extra);
+        Server::spawn(command, stderr)
+    }
+
+    /// Starts the binary at `bin` with at most `nofile` open files (the
+    /// shell's `ulimit -n`; the server replaces the shell).
+    pub fn start_limited(bin: &str, nofile: u32, extra: &[&str]) -> Server {
+        let mut command = Command::new("sh");
+        command
+            .args([
+                "-c",
+                &format!("ulimit -n {nofile} && exec \"$@\""),
+                "sh",
+                bin,
+            ])
             .args(["serve", "--port", "0"])
-            .args(extra)
+            .args(extra);
+        Server::spawn(command, false)
+    }
+
+    fn spawn(mut command: Command, stderr: bool) -> Server {
+        let mut child = command
             .stdout(Stdio::piped())
             .stderr(if stderr {
                 Stdio::piped()

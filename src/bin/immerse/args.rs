@@ -219,7 +219,7 @@ pub(crate) struct ServeLimits {
     pub(crate) job_timeout: u64,
     /// MiB of finished morphs kept for their frames and downloads; the
     /// oldest are dropped first, and a larger morph gets HTTP 413.
-    #[arg(long, value_name = "MIB", default_value_t = 256, value_parser = clap::value_parser!(u64).range(1..=65536))]
+    #[arg(long, value_name = "MIB", default_value_t = 128, value_parser = clap::value_parser!(u64).range(1..=65536))]
     pub(crate) job_memory: u64,
     /// Most open connections; past it the longest-idle connection is
     /// closed, or when none is idle the new one gets HTTP 503.

@@ -160,13 +160,13 @@ pub(super) fn app(
 }
 
 fn json(bytes: &Bytes) -> Response {
-    http::reply("application/json", bytes.clone(), None, ())
+    http::reply("application/json", vec![bytes.clone()], None, ())
 }
 
 async fn page() -> Response {
     http::reply(
         "text/html; charset=utf-8",
-        Bytes::from_static(PAGE.as_bytes()),
+        vec![Bytes::from_static(PAGE.as_bytes())],
         None,
         (),
     )
@@ -175,7 +175,7 @@ async fn page() -> Response {
 async fn favicon() -> Response {
     http::reply(
         "image/svg+xml",
-        Bytes::from_static(FAVICON.as_bytes()),
+        vec![Bytes::from_static(FAVICON.as_bytes())],
         None,
         (),
     )
@@ -334,7 +334,7 @@ async fn check(With(st): With<Arc<State>>, req: Request) -> Response {
             check_curve(&body, max_points)
         })
         .await?;
-        Ok::<_, ApiError>(http::reply("application/json", report, None, slot))
+        Ok::<_, ApiError>(http::reply("application/json", vec![report], None, slot))
     };
     answer.await.unwrap_or_else(IntoResponse::into_response)
 }
@@ -417,8 +417,8 @@ async fn morph(With(st): With<Arc<State>>, req: Request) -> Response {
             run_morph(&body, &shapes, stop)
         })
         .await?;
-        st.store.keep(job)?;
-        Ok::<_, ApiError>(http::reply("application/json", reply, None, slot))
+        let job = st.store.keep(job)?;
+        Ok::<_, ApiError>(http::reply("application/json", reply, None, (slot, job)))
     };
     answer.await.unwrap_or_else(IntoResponse::into_response)
 }
@@ -429,14 +429,13 @@ fn run_morph(
     body: &[u8],
     shapes: &ShapeLimits,
     stop: &jobs::Stop,
-) -> Result<(Bytes, Job), ApiError> {
+) -> Result<(Vec<Bytes>, Job), ApiError> {
     let req: jobs::MorphRequest = http::parse_json(body)?;
     let plan = jobs::plan(req, shapes)?;
     let started = Instant::now();
     let morph = jobs::compute(&plan, stop)?;
     let elapsed = started.elapsed();
-    let morph_json =
-        Bytes::from(serde_json::to_vec(&morph).map_err(|e| ApiError::new(500, e.to_string()))?);
+    let morph_json = exact_json(&morph)?;
     let id = JobId::random()?;
     let counts: Vec<usize> = {
         let mut c: Vec<usize> = morph.frames.iter().map(|f| f.points.len()).collect();
@@ -464,15 +463,42 @@ fn run_morph(
             "progress": format!("{base}/progress"),
         },
     });
-    let mut text = summary.to_string().into_bytes();
-    // Append the morph itself, exactly as `immerse morph --json` writes it.
-    text.pop();
-    text.extend_from_slice(b",\"morph\":");
-    text.extend_from_slice(&morph_json);
-    text.push(b'}');
+    // The summary, then the morph itself, exactly as `immerse morph
+    // --json` writes it (the bytes the job keeps, not a copy).
+    let mut head = summary.to_string();
+    head.pop();
+    head.push_str(",\"morph\":");
+    let answer = vec![
+        Bytes::from(head),
+        morph_json.clone(),
+        Bytes::from_static(b"}"),
+    ];
     let frames = crate::commands::render_frames(&morph.frames);
+    drop(morph);
     let job = Job::new(id, frames, &plan, morph_json);
-    Ok((Bytes::from(text), job))
+    Ok((answer, job))
+}
+
+/// `value` as JSON in a buffer of exactly its length: it is measured
+/// first, since a growing buffer may end up to twice the length, and the
+/// job keeps these bytes (they count in --job-memory).
+fn exact_json<T: serde::Serialize>(value: &T) -> Result<Bytes, ApiError> {
+    struct Count(usize);
+    impl std::io::Write for Count {
+        fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+            self.0 += buf.len();
+            Ok(buf.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+    let failed = |e: serde_json::Error| ApiError::new(500, format!("cannot write the morph: {e}"));
+    let mut count = Count(0);
+    serde_json::to_writer(&mut count, value).map_err(failed)?;
+    let mut bytes = Vec::with_capacity(count.0);
+    serde_json::to_writer(&mut bytes, value).map_err(failed)?;
+    Ok(Bytes::from(bytes))
 }
 
 /// `GET /api/jobs/ID/FILE`: a frame or download of a job (one job slot
@@ -505,7 +531,8 @@ async fn job_file(
                 serde_json::json!({ "done": job.gif_done.load(Ordering::Relaxed), "total": total })
             });
             let text = serde_json::json!({ "gif": gif }).to_string();
-            return Ok(http::reply("application/json", Bytes::from(text), None, ()));
+            let text = vec![Bytes::from(text)];
+            return Ok(http::reply("application/json", text, None, ()));
         }
         let want = Want::parse(&job, &file)?;
         if let Some(p) = &phase {
@@ -524,7 +551,7 @@ async fn job_file(
         let name = download.then_some(made.name.as_str());
         Ok::<_, ApiError>(http::reply(
             made.content_type,
-            made.bytes.clone(),
+            vec![made.bytes.clone()],
             name,
             (slot, job),
         ))

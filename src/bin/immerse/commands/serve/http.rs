@@ -23,13 +23,16 @@ use axum::http::{HeaderMap, HeaderValue, Method, StatusCode, header};
 use axum::middleware::Next;
 use axum::response::{IntoResponse, Response};
 use bytes::Bytes;
-use http_body_util::{BodyExt, Full};
+use http_body::{Frame, SizeHint};
+use http_body_util::BodyExt;
 use hyper::body::Incoming;
 use hyper_util::rt::{TokioIo, TokioTimer};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, VecDeque};
 use std::convert::Infallible;
+use std::pin::Pin;
 use std::sync::atomic::{AtomicBool, AtomicU8, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
+use std::task::{Context, Poll};
 use std::time::Duration;
 use tokio::io::AsyncWriteExt;
 use tokio::net::{TcpListener, TcpStream};
@@ -79,17 +82,52 @@ impl IntoResponse for ApiError {
 
 const JSON: &str = "application/json";
 
-/// A successful answer of `bytes`, keeping `hold` (a job slot, the job
-/// itself) until its last byte is sent or the connection ends; a download
-/// when `name` is given.
+/// A body sent as the chunks it is made of (a morph's answer is its
+/// summary and then the morph JSON that its job keeps, without a copy),
+/// each cut into frames of at most [`FRAME_BYTES`]: hyper asks for the
+/// next frame only once it has written the last, so the body, and what it
+/// holds, lasts until the answer is nearly all sent.
+struct Chunks(VecDeque<Bytes>);
+
+/// Largest frame of a [`Chunks`] body.
+const FRAME_BYTES: usize = 64 << 10;
+
+impl http_body::Body for Chunks {
+    type Data = Bytes;
+    type Error = Infallible;
+
+    fn poll_frame(
+        mut self: Pin<&mut Self>,
+        _: &mut Context<'_>,
+    ) -> Poll<Option<Result<Frame<Bytes>, Infallible>>> {
+        let frame = match self.0.front_mut() {
+            None => None,
+            Some(first) if first.len() > FRAME_BYTES => Some(first.split_to(FRAME_BYTES)),
+            Some(_) => self.0.pop_front(),
+        };
+        Poll::Ready(frame.map(|b| Ok(Frame::data(b))))
+    }
+
+    fn is_end_stream(&self) -> bool {
+        self.0.is_empty()
+    }
+
+    fn size_hint(&self) -> SizeHint {
+        SizeHint::with_exact(self.0.iter().map(|b| b.len() as u64).sum())
+    }
+}
+
+/// A successful answer of `chunks` (one after another), keeping `hold` (a
+/// job slot, the job itself) until its last byte is sent or the connection
+/// ends; a download when `name` is given.
 pub(super) fn reply(
     content_type: &'static str,
-    bytes: Bytes,
+    chunks: Vec<Bytes>,
     name: Option<&str>,
     hold: impl Send + 'static,
 ) -> Response {
-    let len = bytes.len();
-    let body = Full::new(bytes).map_frame(move |frame| {
+    let len: usize = chunks.iter().map(Bytes::len).sum();
+    let body = Chunks(chunks.into()).map_frame(move |frame| {
         let _ = &hold;
         frame
     });

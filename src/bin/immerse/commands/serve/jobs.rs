@@ -412,12 +412,22 @@ pub(super) fn plan(req: MorphRequest, limits: &ShapeLimits) -> Result<Plan, ApiE
     if let Some(message) = crate::commands::fps_error("\"fps\":", fps) {
         return Err(ApiError::bad(message));
     }
-    let easing: render::Easing = req
-        .easing
-        .as_deref()
-        .unwrap_or("linear")
+    let easing_text = req.easing.as_deref().unwrap_or("linear");
+    let easing: render::Easing = easing_text
         .parse()
         .map_err(|e: render::RenderError| ApiError::bad(format!("\"easing\": {e}")))?;
+    let times = render::frame_times(frames, &easing);
+    // An easing that overshoots asks for frames outside the morph: refused
+    // as the command line refuses it.
+    if let Some((index, t)) = times
+        .iter()
+        .enumerate()
+        .find(|(_, t)| !(0.0..=1.0).contains(*t))
+    {
+        return Err(ApiError::bad(format!(
+            "\"easing\": {easing_text}: frame fraction {t} (at position {index}) is not a number in [0, 1]"
+        )));
+    }
     let looping: render::Loop = req
         .looping
         .as_deref()
@@ -457,7 +467,7 @@ pub(super) fn plan(req: MorphRequest, limits: &ShapeLimits) -> Result<Plan, ApiE
         .with_onion_skin(req.onion);
     Ok(Plan {
         curves,
-        times: render::frame_times(frames, &easing),
+        times,
         options,
         style,
         fps,

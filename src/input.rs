@@ -91,12 +91,26 @@ pub fn read_capped(path: &Path, limit: u64) -> Result<Vec<u8>, ReadError> {
     }
     let file = std::fs::File::open(path).map_err(ReadError::Io)?;
     // A regular file's length is known; other data grows the buffer as it
-    // arrives, up to the cap.
+    // arrives, doubling but never past the cap (plus the one byte that
+    // shows the data is longer).
+    let cap = usize::try_from(limit.saturating_add(1)).unwrap_or(usize::MAX);
     let expected = if meta.is_file() { meta.len() } else { 0 };
-    let mut bytes = Vec::with_capacity(usize::try_from(expected.min(limit)).unwrap_or(0));
-    file.take(limit.saturating_add(1))
-        .read_to_end(&mut bytes)
-        .map_err(ReadError::Io)?;
+    let mut bytes = Vec::with_capacity(usize::try_from(expected).unwrap_or(0).min(cap));
+    let mut reader = file.take(limit.saturating_add(1));
+    let mut chunk = vec![0_u8; 64 << 10];
+    loop {
+        let n = match reader.read(&mut chunk) {
+            Ok(0) => break,
+            Ok(n) => n,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(ReadError::Io(e)),
+        };
+        if bytes.len() + n > bytes.capacity() {
+            let grown = (bytes.capacity() * 2).max(bytes.len() + n).min(cap);
+            bytes.reserve_exact(grown - bytes.len());
+        }
+        bytes.extend_from_slice(&chunk[..n]);
+    }
     if bytes.len() as u64 > limit {
         return Err(ReadError::TooLarge { size: None, limit });
     }

@@ -303,16 +303,18 @@ fn huge_content_length(port: u16) -> String {
     tally.text()
 }
 
-/// 64 POSTs whose bodies come one byte every 250 ms, for 5 s.
+/// 64 POSTs whose bodies come one byte every 250 ms, for 5 s: 32 announce
+/// 100,000 bytes, 32 announce 3,000,000 (over the body limit).
 fn slow_bodies(port: u16) -> String {
-    let head = request_head(
-        port,
-        "POST",
-        "/api/check",
-        "Content-Type: application/json\r\nContent-Length: 100000\r\n",
-    );
     let mut conns: Vec<TcpStream> = (0..64)
-        .filter_map(|_| {
+        .filter_map(|i| {
+            let length = if i % 2 == 0 { 100_000 } else { 3_000_000 };
+            let head = request_head(
+                port,
+                "POST",
+                "/api/check",
+                &format!("Content-Type: application/json\r\nContent-Length: {length}\r\n"),
+            );
             let mut c = connect(port)?;
             c.write_all(head.as_bytes()).ok()?;
             Some(c)

@@ -89,8 +89,9 @@ pub(crate) enum Command {
     ///
     /// An HTTP server bound to 127.0.0.1 only, serving one self-contained
     /// page (embedded in the binary; no network is used) and a JSON API
-    /// (POST /api/morph, POST /api/check; see the README). Request sizes,
-    /// points, frames and concurrent jobs are bounded. Stops on Ctrl-C.
+    /// (POST /api/morph, POST /api/check; see the README). Every resource a
+    /// client can make it spend is bounded by one of the limits below.
+    /// Ctrl-C finishes the requests in flight, then stops.
     #[command(
         after_help = "Examples:\n  immerse serve\n  immerse serve --port 0 --open\n  immerse serve --port 8080 --max-jobs 4"
     )]
@@ -126,8 +127,8 @@ pub(crate) struct AnimateArgs {
     /// timeline's, else 2 seconds per segment at --fps).
     #[arg(long, value_parser = clap::value_parser!(u32).range(2..=100_000))]
     pub(crate) frames: Option<u32>,
-    /// Frames per second of the timing and of a GIF or animated SVG
-    /// (default: the timeline's, else 30).
+    /// Frames per second of the timing and of a GIF or animated SVG, from
+    /// 0.1 to 1000 (default: the timeline's, else 30).
     #[arg(long, allow_negative_numbers = true)]
     pub(crate) fps: Option<f64>,
     /// Easing of every segment without its own: linear keeps the speed
@@ -221,8 +222,9 @@ pub(crate) struct ServeLimits {
     /// oldest are dropped first, and a larger morph gets HTTP 413.
     #[arg(long, value_name = "MIB", default_value_t = 128, value_parser = clap::value_parser!(u64).range(1..=65536))]
     pub(crate) job_memory: u64,
-    /// Most open connections; past it the longest-idle connection is
-    /// closed, or when none is idle the new one gets HTTP 503.
+    /// Most open connections; past it the oldest idle connection is closed
+    /// (else the oldest one waiting for a job slot or its body), or when
+    /// none is, the new one gets HTTP 503.
     #[arg(long, default_value_t = 128, value_parser = clap::value_parser!(u32).range(2..=10000))]
     pub(crate) max_connections: u32,
     /// Seconds a client has to send a request's headers; also how long an
@@ -338,7 +340,7 @@ pub(crate) struct MeshMorphArgs {
     #[arg(long, value_name = "WxH", default_value = "600x600", value_parser = parse_size)]
     pub(crate) size: (u32, u32),
     /// Frames per second of a GIF (at most 50: GIF delays are whole
-    /// hundredths of a second) or animated SVG.
+    /// hundredths of a second), animated SVG or Lottie, from 0.1 to 1000.
     #[arg(long, default_value_t = 30.0)]
     pub(crate) fps: f64,
     /// Replace existing output files; write into a non-empty folder,
@@ -562,7 +564,7 @@ pub(crate) struct MorphArgs {
     #[arg(long, value_name = "WxH", default_value = "600x600", value_parser = parse_size)]
     pub(crate) size: (u32, u32),
     /// Frames per second of a GIF (at most 50: GIF delays are whole
-    /// hundredths of a second) or animated SVG.
+    /// hundredths of a second), animated SVG or Lottie, from 0.1 to 1000.
     #[arg(long, default_value_t = 30.0)]
     pub(crate) fps: f64,
     /// Play the animation forwards then backwards, repeating.
@@ -656,6 +658,44 @@ mod tests {
         };
         assert_eq!(m.json, Some("-".into()));
         assert!(m.quiet);
+    }
+
+    #[test]
+    fn serve_limits_have_their_defaults_and_ranges() {
+        let cli = Cli::try_parse_from(["immerse", "serve"]).unwrap();
+        let Command::Serve(a) = cli.command else {
+            panic!("not serve")
+        };
+        let l = &a.limits;
+        assert_eq!(
+            (a.port, l.max_jobs, l.job_timeout, l.job_memory),
+            (7878, 2, 60, 128)
+        );
+        assert_eq!(
+            (l.max_connections, l.header_timeout, l.max_header_bytes),
+            (128, 10, 16384)
+        );
+        assert_eq!(
+            (l.max_body_bytes, l.body_timeout, l.write_timeout),
+            (2 << 20, 10, 20)
+        );
+        assert_eq!(
+            (l.max_points, l.max_frames, l.max_curves, l.max_side),
+            (5000, 240, 8, 2048)
+        );
+        for bad in [
+            ["--max-jobs", "0"],
+            ["--max-connections", "1"],
+            ["--max-header-bytes", "100"],
+            ["--job-memory", "0"],
+        ] {
+            assert!(
+                Cli::try_parse_from(["immerse", "serve", bad[0], bad[1]]).is_err(),
+                "{bad:?}"
+            );
+        }
+        // The test hook of the first server is gone.
+        assert!(Cli::try_parse_from(["immerse", "serve", "--job-delay-ms", "10"]).is_err());
     }
 
     #[test]

@@ -164,7 +164,7 @@ const WORKING: u8 = 2;
 struct Conn {
     phase: AtomicU8,
     close: Notify,
-    /// Closed at once (it was waiting), not after its request.
+    /// Closed at once (to make room), not after its request (the drain).
     kill: AtomicBool,
 }
 
@@ -311,9 +311,11 @@ impl Server {
                     self.refuse(stream);
                     return;
                 };
+                // Closed at once: it has no request (or one still waiting),
+                // and hyper would keep a connection that has not finished
+                // its first request open until it does.
                 if let Some(c) = reg.open.remove(&victim) {
-                    c.kill
-                        .store(c.phase.load(Ordering::SeqCst) == WAITING, Ordering::SeqCst);
+                    c.kill.store(true, Ordering::SeqCst);
                     c.close.notify_one();
                 }
             }

@@ -31,10 +31,12 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 /// The most resident memory the server may use under any attack here:
-/// the stored-morph budget (`--job-memory`, 256 MiB by default) plus the
-/// answer being built and sent for one morph of 5,000 points and 240
-/// frames (its JSON is 68 MB), with room for the allocator.
-const RSS_BOUND: u64 = 640 << 20;
+/// the stored-morph budget (`--job-memory`, 128 MiB by default), the work
+/// of the two jobs that may run at once (packing a morph of 5,000 points
+/// and 240 frames takes about 140 MB: its frames, their JSON, 68 MB, and
+/// the frames kept for rendering), and room for the allocator. The largest
+/// peaks measured are 337 to 409 MiB (usvg reading two 2 MB SVGs at once).
+const RSS_BOUND: u64 = 512 << 20;
 
 /// How long `GET /` may take while the server is under attack.
 const PROBE_LIMIT: Duration = Duration::from_secs(2);

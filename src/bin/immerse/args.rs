@@ -222,9 +222,9 @@ pub(crate) struct ServeLimits {
     /// oldest are dropped first, and a larger morph gets HTTP 413.
     #[arg(long, value_name = "MIB", default_value_t = 128, value_parser = clap::value_parser!(u64).range(1..=65536))]
     pub(crate) job_memory: u64,
-    /// Most open connections; past it the oldest idle connection is closed
-    /// (else the oldest one waiting for a job slot or its body), or when
-    /// none is, the new one gets HTTP 503.
+    /// Most open connections; past it the oldest connection without a
+    /// request, or whose request still waits for a job slot or its body,
+    /// is closed; when none is, the new one gets HTTP 503.
     #[arg(long, default_value_t = 128, value_parser = clap::value_parser!(u32).range(2..=10000))]
     pub(crate) max_connections: u32,
     /// Seconds a client has to send a request's headers; also how long an

@@ -6,9 +6,9 @@
 //!   it (`--header-timeout`, also how long an idle connection stays open).
 //!   Writes to a client that stopped reading end the connection after
 //!   `--write-timeout` (tokio-io-timeout). At most `--max-connections` are
-//!   open: a new one closes the oldest idle connection (one between
-//!   requests), else drops the oldest one still waiting for a job slot or
-//!   for its request body, else is answered HTTP 503 at once.
+//!   open: a new one closes the oldest connection that is not working on a
+//!   request (one without a request, or whose request still waits for a
+//!   job slot or its body), else is answered HTTP 503 at once.
 //! - [`guard`] runs first for every request: the `Host` must name this
 //!   server on loopback (DNS rebinding), a `POST` whose `Origin` is another
 //!   site's is refused, and so is any API request whose `Sec-Fetch-Site`
@@ -233,7 +233,7 @@ impl Server {
     }
 
     /// Serves `app` on `listener` until `stop` turns true, then closes the
-    /// idle connections and lets the others finish their request.
+    /// connections without a request and lets the others finish theirs.
     pub(super) async fn serve<S>(
         self: Arc<Self>,
         listener: TcpListener,
@@ -268,7 +268,12 @@ impl Server {
             }
         }
         drop(listener);
+        // Connections without a request close now (a browser keeps spare
+        // ones open); the others finish their request first.
         for conn in self.registry().open.values() {
+            if conn.phase.load(Ordering::SeqCst) == IDLE {
+                conn.kill.store(true, Ordering::SeqCst);
+            }
             conn.close.notify_one();
         }
     }
@@ -300,13 +305,16 @@ impl Server {
         let (id, conn) = {
             let mut reg = self.registry();
             if reg.open.len() >= self.limits.max_connections {
-                let oldest = |phase: u8| {
-                    reg.open
-                        .iter()
-                        .find(|(_, c)| c.phase.load(Ordering::SeqCst) == phase)
-                        .map(|(&id, _)| id)
-                };
-                let Some(victim) = oldest(IDLE).or_else(|| oldest(WAITING)) else {
+                // The oldest connection not working on a request: idle, or
+                // waiting for a job slot or its body. Age, not the phase,
+                // decides, so a new connection that has not yet sent its
+                // request is the last to go.
+                let victim = reg
+                    .open
+                    .iter()
+                    .find(|(_, c)| c.phase.load(Ordering::SeqCst) != WORKING)
+                    .map(|(&id, _)| id);
+                let Some(victim) = victim else {
                     drop(reg);
                     self.refuse(stream);
                     return;

@@ -15,7 +15,8 @@
 //!   says another site sent it. Every error answer, including those of the
 //!   layers below it (tower-http's request time limit and body limit),
 //!   becomes `{"error": "..."}`.
-//! - [`read_json`] reads a POST body as JSON, within `--body-timeout`.
+//! - [`require_json`], [`read_body`] and [`parse_json`] take a POST's
+//!   JSON body, within `--body-timeout`.
 
 use axum::body::Body;
 use axum::extract::{Request, State};
@@ -464,7 +465,7 @@ impl Guard {
         }
         let api = req.uri().path().starts_with("/api/");
         let changes = !matches!(*req.method(), Method::GET | Method::HEAD);
-        if let Some(site) = text(HeaderName::SEC_FETCH_SITE)
+        if let Some(site) = text(SEC_FETCH_SITE)
             && (api || changes)
             && !matches!(site, "same-origin" | "none")
         {
@@ -510,12 +511,9 @@ impl Guard {
     }
 }
 
-/// Names of headers that `http` has no constant for.
-struct HeaderName;
-
-impl HeaderName {
-    const SEC_FETCH_SITE: &'static str = "sec-fetch-site";
-}
+/// The header that says which site a browser request comes from (`http`
+/// has no constant for it).
+const SEC_FETCH_SITE: &str = "sec-fetch-site";
 
 /// The outermost layer: checks every request ([`Guard`]), turns the plain
 /// error answers of the layers below into JSON, and adds the headers every

@@ -6,8 +6,10 @@
 # which git ignores). Installs Chromium with apt when /usr/bin/chromium is
 # missing; never lets a tool download a browser of its own.
 #
-# Prints the measured pixel differences and the run time; saves a screenshot
-# of the playground to docs/img/playground.png (SCREENSHOT=path to change).
+# Prints the measured pixel differences, the layout at 1280x800 and 390x844
+# and the run time; saves screenshots of the playground at both sizes to
+# docs/img/playground.png and docs/img/playground-phone.png (SCREENSHOT=path
+# and SCREENSHOT_PHONE=path to change).
 #
 #   scripts/browser-test.sh            # build the release binary, run the test
 #   IMMERSE_BIN=path scripts/browser-test.sh   # test another binary (no build)

@@ -51,6 +51,7 @@ skip=(
   'immerse serve*|starts the playground server, which runs until Ctrl-C (tests/integration/web.rs and scripts/browser-test.sh test it)'
   'scripts/browser-test.sh*|the browser test: installs chromium (apt) and npm packages; .ci/run runs it'
   'cargo test --release --test integration*|part of the test suite; CI runs the whole suite'
+  'cargo test --release --test hostile*|the hostile-traffic test of the playground server (about a minute); .ci/run runs it'
   'cargo run --release --example stress -- --pairs 10000*|the long stress run takes minutes; .ci/run runs it'
   'cargo run --release --example stress -- --replay*|replays tests/stress-regressions/, which the test suite replays too (stress_regressions_all_morph)'
 )

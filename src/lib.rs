@@ -67,6 +67,7 @@ pub mod flip;
 pub mod frames;
 pub mod geom;
 pub mod immersion;
+pub mod input;
 pub mod mesh_morph;
 pub mod morph;
 pub mod quality;

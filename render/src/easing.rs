@@ -32,6 +32,10 @@ pub enum Easing {
 const X_TOLERANCE: f64 = 1e-12;
 
 impl Easing {
+    /// The easings known by name, as they parse; `cubic-bezier(x1,y1,x2,y2)`
+    /// gives any other.
+    pub const NAMES: [&'static str; 5] = ["linear", "ease", "ease-in", "ease-out", "ease-in-out"];
+
     /// A checked [`Easing::CubicBezier`].
     ///
     /// # Errors
@@ -236,6 +240,19 @@ mod tests {
         Easing::CubicBezier(0.1, -0.5, 0.9, 1.5),
         Easing::CubicBezier(1.0, 0.0, 0.0, 1.0),
     ];
+
+    #[test]
+    fn every_name_parses_and_others_do_not() {
+        for name in Easing::NAMES {
+            let e: Easing = name.parse().unwrap();
+            // A named easing prints as its name, except `ease`, which has
+            // no variant of its own.
+            if name != "ease" {
+                assert_eq!(e.to_string(), name);
+            }
+        }
+        assert!("ease-sideways".parse::<Easing>().is_err());
+    }
 
     #[test]
     fn endpoints_are_fixed() {

@@ -75,8 +75,13 @@ pub enum RenderError {
         /// The first frame without an outline.
         frame: usize,
     },
-    /// The frame rate is not a positive finite number.
-    #[error("frame rate {fps} is not a positive number of frames per second")]
+    /// The frame rate is not from [`crate::MIN_FPS`] to [`crate::MAX_FPS`]
+    /// frames per second.
+    #[error(
+        "frame rate {fps} is not from {} to {} frames per second",
+        crate::MIN_FPS,
+        crate::MAX_FPS
+    )]
     BadFps {
         /// The rejected frame rate.
         fps: f64,
@@ -90,6 +95,9 @@ pub enum RenderError {
         /// The rejected frame rate.
         fps: f64,
     },
+    /// The caller stopped the work (see [`crate::encode_gif`]).
+    #[error("stopped before the end")]
+    Cancelled,
     /// A contact sheet would have more pixels than are rendered.
     #[error(
         "a contact sheet of {frames} frames in {columns} columns would be {width}x{height} pixels, over the limit of {limit} pixels; use fewer frames or a smaller size"

@@ -69,10 +69,11 @@ pub use error::RenderError;
 pub use frame::Frame;
 pub use lottie::{LOTTIE_TOLERANCE_PX, lottie, write_lottie};
 pub use output::{
-    Destination, GIF_MAX_FPS, Loop, NewOutputDir, Output, OutputFile, check_gif_fps,
-    check_output_dir, check_output_file, contact_sheet, contact_sheet_columns, contact_sheet_size,
-    encode_gif, frame_file_name, is_stdout, remove_partial_outputs, resolve_output, write_atomic,
-    write_contact_sheet, write_gif, write_png_sequence,
+    Destination, GIF_MAX_FPS, Loop, MAX_FPS, MIN_FPS, NewOutputDir, Output, OutputFile, check_fps,
+    check_gif_fps, check_output_dir, check_output_file, contact_sheet, contact_sheet_columns,
+    contact_sheet_size, encode_gif, fps_in_range, frame_file_name, is_stdout,
+    remove_partial_outputs, resolve_output, write_atomic, write_contact_sheet, write_gif,
+    write_png_sequence,
 };
 pub use raster::{encode_png, render};
 pub use style::{Rgba, Style};

@@ -86,6 +86,9 @@ pub enum Loop {
 }
 
 impl Loop {
+    /// Every way to repeat, in the order the CLI lists them.
+    pub const ALL: [Loop; 3] = [Loop::Loop, Loop::PingPong, Loop::Once];
+
     /// The frame indices played in one cycle for `n` frames.
     ///
     /// # Examples
@@ -805,8 +808,8 @@ const GIF_BATCH: usize = 16;
 /// hundredths of a second, and browsers slow down delays under 2.
 pub const GIF_MAX_FPS: f64 = 50.0;
 
-/// Checks that a GIF can play `fps` frames per second: a positive rate of
-/// at most [`GIF_MAX_FPS`].
+/// Checks that a GIF can play `fps` frames per second: a rate from
+/// [`MIN_FPS`] to [`GIF_MAX_FPS`].
 ///
 /// # Errors
 ///
@@ -862,22 +865,30 @@ pub fn write_gif(
         gif::EncodingError::Io(io) => RenderError::io(path, os_error(io)),
         other => RenderError::Gif(other),
     };
-    encode_gif_into(out, frames, style, fps, looping, opts, progress, &gif_error)?.finish()
+    let report = |done: usize| {
+        progress(done);
+        true
+    };
+    encode_gif_into(out, frames, style, fps, looping, opts, &report, &gif_error)?.finish()
 }
 
 /// The GIF that [`write_gif`] writes, in memory (for a server; `opts.force`
-/// is not used).
+/// is not used). `keep_going` is asked before each frame is rendered, with
+/// the number of frames finished so far: when it answers false the work
+/// stops with [`RenderError::Cancelled`] (a server stops a GIF whose client
+/// has left or whose time is up).
 ///
 /// # Errors
 ///
-/// As [`write_gif`], without the output-safety errors.
+/// As [`write_gif`], without the output-safety errors, and
+/// [`RenderError::Cancelled`].
 pub fn encode_gif(
     frames: &[Frame],
     style: &Style,
     fps: f64,
     looping: Loop,
     opts: &Output,
-    progress: &(dyn Fn(usize) + Sync),
+    keep_going: &(dyn Fn(usize) -> bool + Sync),
 ) -> Result<Vec<u8>, RenderError> {
     check_gif(frames, style, fps)?;
     encode_gif_into(
@@ -887,7 +898,7 @@ pub fn encode_gif(
         fps,
         looping,
         opts,
-        progress,
+        keep_going,
         &RenderError::Gif,
     )
 }
@@ -904,7 +915,9 @@ fn check_gif(frames: &[Frame], style: &Style, fps: f64) -> Result<(), RenderErro
 /// The one GIF encoder: renders and quantises the frames in parallel
 /// batches and writes them to `out` in order (ping-pong plays the frames
 /// back without repeating the ends), with delays that keep the average
-/// rate exact; returns `out`.
+/// rate exact; returns `out`. `keep_going` gets the number of frames
+/// finished before each frame is rendered and after the last; false stops
+/// the work ([`RenderError::Cancelled`]).
 #[allow(
     clippy::too_many_arguments,
     reason = "the frames, their style and timing, and where they go"
@@ -916,7 +929,7 @@ fn encode_gif_into<W: Write>(
     fps: f64,
     looping: Loop,
     opts: &Output,
-    progress: &(dyn Fn(usize) + Sync),
+    keep_going: &(dyn Fn(usize) -> bool + Sync),
     gif_error: &dyn Fn(gif::EncodingError) -> RenderError,
 ) -> Result<W, RenderError> {
     let too_large = || RenderError::ImageTooLarge {
@@ -943,12 +956,15 @@ fn encode_gif_into<W: Write>(
             .par_iter()
             .enumerate()
             .map(|(k, frame)| {
+                if !keep_going(done.load(Ordering::Relaxed)) {
+                    return Err(RenderError::Cancelled);
+                }
                 let i = b * GIF_BATCH + k;
                 let pixmap = render(frame, &view, style, &ghosts).map_err(|e| e.in_frame(i))?;
                 let mut rgba = pixmap.take_demultiplied();
                 let mut gf = gif::Frame::from_rgba_speed(w, h, &mut rgba, speed);
                 gf.make_lzw_pre_encoded();
-                progress(done.fetch_add(1, Ordering::Relaxed) + 1);
+                done.fetch_add(1, Ordering::Relaxed);
                 Ok(gf)
             })
             .collect::<Result<Vec<_>, RenderError>>()?;
@@ -967,14 +983,37 @@ fn encode_gif_into<W: Write>(
             gf.delay = gif_delay(played, fps);
             played += 1;
             encoder.write_lzw_pre_encoded_frame(gf).map_err(gif_error)?;
-            progress(done.fetch_add(1, Ordering::Relaxed) + 1);
+            done.fetch_add(1, Ordering::Relaxed);
         }
+    }
+    if !keep_going(done.load(Ordering::Relaxed)) {
+        return Err(RenderError::Cancelled);
     }
     encoder.into_inner().map_err(gif_error)
 }
 
-pub(crate) fn check_fps(fps: f64) -> Result<(), RenderError> {
-    if fps.is_finite() && fps > 0.0 {
+/// The slowest frame rate an animation may have, in frames per second:
+/// every duration written (an animated SVG's `dur`, a Lottie's `fr`,
+/// which it rounds to hundredths, a GIF's delays) stays finite and
+/// nonzero.
+pub const MIN_FPS: f64 = 0.1;
+
+/// The fastest frame rate an animation may have, in frames per second.
+pub const MAX_FPS: f64 = 1000.0;
+
+/// True when `fps` is a frame rate from [`MIN_FPS`] to [`MAX_FPS`]: the
+/// one range of every command's `--fps` and of the playground's `fps`.
+pub fn fps_in_range(fps: f64) -> bool {
+    (MIN_FPS..=MAX_FPS).contains(&fps)
+}
+
+/// Checks that `fps` is a frame rate from [`MIN_FPS`] to [`MAX_FPS`].
+///
+/// # Errors
+///
+/// [`RenderError::BadFps`].
+pub fn check_fps(fps: f64) -> Result<(), RenderError> {
+    if fps_in_range(fps) {
         Ok(())
     } else {
         Err(RenderError::BadFps { fps })

@@ -29,6 +29,7 @@ pub use svg::{MAX_SVG_PATH_NUMBER, MAX_SVG_SHAPES, SVG_FLATTEN_TOLERANCE, SvgSha
 
 use crate::geom::Point;
 use crate::geom::polygon::{self, Turning};
+use crate::input::ReadError;
 use std::path::Path;
 
 /// Largest curve file accepted, in bytes (64 MiB).
@@ -76,22 +77,7 @@ impl Curve {
             path: label.clone(),
             extension: ext.clone(),
         })?;
-        let io = |source| CurveError::Io {
-            path: label.clone(),
-            source,
-        };
-        let meta = std::fs::metadata(path).map_err(io)?;
-        if meta.is_dir() {
-            return Err(CurveError::IsDirectory { path: label });
-        }
-        if meta.len() > MAX_FILE_BYTES {
-            return Err(CurveError::TooLarge {
-                path: label,
-                what: format!("{} bytes", meta.len()),
-                limit: format!("{MAX_FILE_BYTES} bytes"),
-            });
-        }
-        let bytes = std::fs::read(path).map_err(io)?;
+        let bytes = read_file(path, &label)?;
         let stem = path
             .file_stem()
             .and_then(|s| s.to_str())
@@ -149,22 +135,7 @@ impl Curve {
     ) -> Result<Vec<Curve>, CurveError> {
         let path = path.as_ref();
         let label = path.display().to_string();
-        let io = |source| CurveError::Io {
-            path: label.clone(),
-            source,
-        };
-        let meta = std::fs::metadata(path).map_err(io)?;
-        if meta.is_dir() {
-            return Err(CurveError::IsDirectory { path: label });
-        }
-        if meta.len() > MAX_FILE_BYTES {
-            return Err(CurveError::TooLarge {
-                path: label,
-                what: format!("{} bytes", meta.len()),
-                limit: format!("{MAX_FILE_BYTES} bytes"),
-            });
-        }
-        let bytes = std::fs::read(path).map_err(io)?;
+        let bytes = read_file(path, &label)?;
         let stem = path
             .file_stem()
             .and_then(|s| s.to_str())
@@ -261,6 +232,25 @@ impl Curve {
     pub fn is_simple(&self) -> bool {
         polygon::is_simple(&self.points)
     }
+}
+
+/// Reads a curve file through the [`MAX_FILE_BYTES`] cap
+/// ([`crate::input::read_capped`]: devices, FIFOs and pipes included).
+fn read_file(path: &Path, label: &str) -> Result<Vec<u8>, CurveError> {
+    crate::input::read_capped(path, MAX_FILE_BYTES).map_err(|e| match e {
+        ReadError::IsDirectory => CurveError::IsDirectory {
+            path: label.to_string(),
+        },
+        ReadError::TooLarge { .. } => CurveError::TooLarge {
+            path: label.to_string(),
+            what: e.size_text().unwrap_or_default(),
+            limit: format!("{MAX_FILE_BYTES} bytes"),
+        },
+        ReadError::Io(source) => CurveError::Io {
+            path: label.to_string(),
+            source,
+        },
+    })
 }
 
 /// A curve file format.

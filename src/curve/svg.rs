@@ -11,7 +11,7 @@
 //! polygon bounds, and y is negated (SVG is y down, immerse is y up).
 
 use super::error::one_line;
-use super::{CurveError, RawCurve};
+use super::{CurveError, MAX_POINTS, RawCurve};
 use crate::geom::Point;
 
 /// Flattening tolerance for Bézier segments, relative to the diagonal of
@@ -64,7 +64,7 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
             path: label.to_string(),
         });
     };
-    Ok(flatten(start, &segs))
+    flatten(start, &segs, label)
 }
 
 /// Which closed shapes of an SVG drawing become curves when one drawing
@@ -101,8 +101,12 @@ pub(crate) fn parse_all(
         found
             .into_iter()
             .enumerate()
-            .map(|(k, (start, segs))| (format!("shape {}", k + 1), flatten(start, &segs)))
-            .collect::<Vec<_>>()
+            .map(|(k, (start, segs))| {
+                let name = format!("shape {}", k + 1);
+                let raw = flatten(start, &segs, &format!("{label} ({name})"))?;
+                Ok((name, raw))
+            })
+            .collect::<Result<Vec<_>, CurveError>>()
     };
     let groups = |tree: &usvg::Tree| {
         let mut level = tree.root();
@@ -122,17 +126,18 @@ pub(crate) fn parse_all(
                 } else {
                     format!("group '{}'", one_line(g.id()))
                 };
-                out.push((name, flatten(start, &segs)));
+                let raw = flatten(start, &segs, &format!("{label} ({name})"))?;
+                out.push((name, raw));
             }
         }
-        out
+        Ok(out)
     };
     let found = match mode {
-        SvgShapes::Shapes => shapes(&tree),
-        SvgShapes::Groups => groups(&tree),
+        SvgShapes::Shapes => shapes(&tree)?,
+        SvgShapes::Groups => groups(&tree)?,
         SvgShapes::Auto => {
-            let g = groups(&tree);
-            if g.len() >= 2 { g } else { shapes(&tree) }
+            let g = groups(&tree)?;
+            if g.len() >= 2 { g } else { shapes(&tree)? }
         }
     };
     if found.is_empty() {
@@ -160,8 +165,9 @@ fn load(bytes: &[u8], label: &str) -> Result<usvg::Tree, CurveError> {
 }
 
 /// Flattens one closed subpath (already mapped by its transform) and
-/// flips y.
-fn flatten(start: Point, segs: &[Seg]) -> RawCurve {
+/// flips y; more than [`MAX_POINTS`] points are refused
+/// ([`CurveError::TooLarge`]) before they are made.
+fn flatten(start: Point, segs: &[Seg], label: &str) -> Result<RawCurve, CurveError> {
     let (mut lo, mut hi) = (start, start);
     for s in segs {
         let pts: &[Point] = match s {
@@ -175,7 +181,39 @@ fn flatten(start: Point, segs: &[Seg]) -> RawCurve {
         }
     }
     let tol = (SVG_FLATTEN_TOLERANCE * (hi - lo).length()).max(f64::MIN_POSITIVE);
-    let mut points = vec![start];
+    // Count the points first: a small file of arcs can ask for millions,
+    // refused before any is made.
+    let mut count = 1_usize;
+    let mut cur = start;
+    for &s in segs {
+        count += match s {
+            Seg::Line(p) => {
+                cur = p;
+                1
+            }
+            Seg::Quad(c, p) => {
+                let n = segments_for(0.25 * (cur - 2.0 * c + p).length(), tol);
+                cur = p;
+                n
+            }
+            Seg::Cubic(c1, c2, p) => {
+                let dd = (cur - 2.0 * c1 + c2)
+                    .length()
+                    .max((c1 - 2.0 * c2 + p).length());
+                cur = p;
+                segments_for(0.75 * dd, tol)
+            }
+        };
+    }
+    if count > MAX_POINTS {
+        return Err(CurveError::TooLarge {
+            path: label.to_string(),
+            what: format!("{count} points once its curves are flattened"),
+            limit: format!("{MAX_POINTS} points"),
+        });
+    }
+    let mut points = Vec::with_capacity(count);
+    points.push(start);
     let mut cur = start;
     for &s in segs {
         match s {
@@ -214,11 +252,11 @@ fn flatten(start: Point, segs: &[Seg]) -> RawCurve {
         .enumerate()
         .map(|(i, p)| (Point::new(p.x, -p.y), i))
         .collect();
-    RawCurve {
+    Ok(RawCurve {
         name: None,
         points,
         lines: false,
-    }
+    })
 }
 
 /// Refuses, before usvg sees them, inputs that would make it do unbounded

@@ -30,6 +30,10 @@ use std::path::PathBuf;
 /// untrusted input.
 pub const MAX_VERTICES: usize = 2_000_000;
 
+/// Largest tiling file read, in bytes (256 MiB: room for
+/// [`MAX_VERTICES`] vertices and their faces as OBJ or JSON text).
+pub const MAX_FILE_BYTES: u64 = 256 << 20;
+
 /// Largest absolute coordinate accepted (2^100): the exact tests of
 /// [`crate::mesh_morph::check_linear`] multiply up to four coordinate
 /// differences, which must neither overflow nor lose their exactness.
@@ -115,6 +119,17 @@ pub enum TilingError {
         /// The cause.
         #[source]
         source: std::io::Error,
+    },
+    /// The file is longer than [`MAX_FILE_BYTES`].
+    #[error("{path}: too large ({size}; the limit is {limit} bytes)")]
+    TooLarge {
+        /// The file.
+        path: PathBuf,
+        /// Its length, or "more than N bytes" for data read through the
+        /// cap (a device, FIFO or pipe).
+        size: String,
+        /// The limit.
+        limit: u64,
     },
     /// A problem inside a named file.
     #[error("{path}: {source}")]

@@ -7,8 +7,9 @@
 //!
 //! Every reader validates the result ([`super::validate`]).
 
-use super::{MAX_VERTICES, Tiling, TilingError};
+use super::{MAX_FILE_BYTES, MAX_VERTICES, Tiling, TilingError};
 use crate::geom::Point;
+use crate::input::{ReadError, read_capped};
 use std::path::Path;
 
 #[derive(serde::Deserialize)]
@@ -23,12 +24,31 @@ impl Tiling {
     ///
     /// # Errors
     ///
-    /// [`TilingError::Io`] when the file cannot be read, otherwise
+    /// [`TilingError::Io`] when the file cannot be read or is a folder,
+    /// [`TilingError::TooLarge`] past [`MAX_FILE_BYTES`] (read through
+    /// that cap: devices, FIFOs and pipes included), otherwise
     /// [`TilingError::InFile`] wrapping the parse or validation problem.
     pub fn from_path(path: &Path) -> Result<Tiling, TilingError> {
-        let text = std::fs::read_to_string(path).map_err(|source| TilingError::Io {
+        let io = |source| TilingError::Io {
             path: path.to_path_buf(),
             source,
+        };
+        let bytes = read_capped(path, MAX_FILE_BYTES).map_err(|e| match e {
+            ReadError::TooLarge { .. } => TilingError::TooLarge {
+                path: path.to_path_buf(),
+                size: e.size_text().unwrap_or_default(),
+                limit: MAX_FILE_BYTES,
+            },
+            ReadError::IsDirectory => io(std::io::Error::other(
+                "it is a folder; name a .obj or .json file",
+            )),
+            ReadError::Io(source) => io(source),
+        })?;
+        let text = String::from_utf8(bytes).map_err(|_| {
+            io(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                "stream did not contain valid UTF-8",
+            ))
         })?;
         let ext = path
             .extension()

@@ -2,19 +2,29 @@
 // output, in Debian's Chromium driven by playwright-core. Run it with
 // scripts/browser-test.sh, which installs what it needs.
 //
-// 1. Starts `immerse serve --port 0`, draws two curves with mouse events,
-//    runs the morph, scrubs to a frame and compares the canvas with the PNG
+// 1. At 1280x800: starts `immerse serve --port 0`, checks the example pair
+//    loaded at start, clears it, draws two curves with mouse events, adds
+//    curves from the reference list, a file and the paste box, runs the
+//    morph and checks that the options and downloads are on screen without
+//    scrolling, scrubs to a frame and compares the canvas with the PNG
 //    that `immerse morph` renders for the same curves and frame. The page
 //    draws the server's PNG, so the two must agree to the pixel (the
 //    tolerance of 2 per channel only absorbs a browser's image decoding).
-// 2. Loads the `--format lottie` file of the same morph in lottie-web on a
-//    test page and compares a rendered frame with immerse's PNG of it.
+//    Then: download names, GIF progress, stale downloads, the fps rule of
+//    GIFs, the frames message and cubic-bezier easing.
+// 2. Click-to-pause: a click on the picture pauses and resumes playback
+//    and never starts a drawing.
+// 3. At 390x844 (a phone): no horizontal scroll, the canvas scales, the
+//    controls stack; the example pair morphs and plays.
+// 4. Loads the `--format lottie` file of the morph of (1) in lottie-web on
+//    a test page and compares a rendered frame with immerse's PNG of it.
 //    Two rasterisers (tiny-skia, Chromium's Skia) anti-alias edges
 //    differently and keyframes may be interpolated (within 1 px), so this
 //    comparison counts pixels that differ by more than 32 in a channel:
 //    they must be edge pixels, at most 2% of the image, with a small mean.
-// Also: no console errors on either page, the page's downloads equal the
-// CLI's files byte for byte, and a screenshot goes to docs/img/playground.png.
+// Also: no console errors on any page, the page's downloads equal the
+// CLI's files byte for byte, and screenshots at both sizes go to
+// docs/img/playground.png and docs/img/playground-phone.png.
 
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
@@ -32,6 +42,9 @@ const require = createRequire(import.meta.url);
 const BIN = resolve(root, process.env.IMMERSE_BIN || "target/release/immerse");
 const CHROMIUM = process.env.CHROMIUM || "/usr/bin/chromium";
 const SCREENSHOT = resolve(root, process.env.SCREENSHOT || "docs/img/playground.png");
+const SCREENSHOT_PHONE = resolve(root, process.env.SCREENSHOT_PHONE || "docs/img/playground-phone.png");
+const DESKTOP = { width: 1280, height: 800 };
+const PHONE = { width: 390, height: 844 };
 const FRAMES = 24;
 const SCRUB_TO = 20; // a frame where the strip overlaps itself
 const SIZE = 600;
@@ -76,7 +89,8 @@ before(async () => {
       "--disable-background-networking", "--disable-component-update", "--disable-sync",
       "--force-color-profile=srgb",
     ],
-    viewport: { width: 1180, height: 900 },
+    viewport: DESKTOP,
+    acceptDownloads: true,
     deviceScaleFactor: 1,
     timeout: 60000,
   });
@@ -135,19 +149,19 @@ function curlStrip(cx, cy) {
 /** Presses, drags along `path` (canvas pixels) and releases. */
 async function drawFreehand(page, path) {
   const box = await page.locator("#stage").boundingBox();
-  const at = ([x, y]) => [box.x + x, box.y + y];
+  // The canvas has SIZE pixels a side and may be drawn smaller.
+  const at = ([x, y]) => [box.x + (x * box.width) / SIZE, box.y + (y * box.height) / SIZE];
   await page.mouse.move(...at(path[0]));
   await page.mouse.down();
   for (const p of path.slice(1)) await page.mouse.move(...at(p), { steps: 2 });
   await page.mouse.up();
 }
 
-/** Compares a canvas (by selector, or an in-page canvas returned by
- * `canvasExpr`) with a PNG given as base64; per-pixel largest channel
- * difference. */
-async function compareWithPng(page, canvasExpr, pngBase64, threshold) {
-  return page.evaluate(async ({ canvasExpr, pngBase64, threshold }) => {
-    const canvas = eval(canvasExpr); // eslint-disable-line no-eval
+/** Compares the canvas `selector` with a PNG given as base64; per-pixel
+ * largest channel difference. */
+async function compareWithPng(page, selector, pngBase64, threshold) {
+  return page.evaluate(async ({ selector, pngBase64, threshold }) => {
+    const canvas = document.querySelector(selector);
     const img = new Image();
     img.src = "data:image/png;base64," + pngBase64;
     await img.decode();
@@ -183,14 +197,56 @@ async function compareWithPng(page, canvasExpr, pngBase64, threshold) {
       // [pixels of that shade in the PNG, of those, pixels of that shade on the canvas]
       depth1, depth2,
     };
-  }, { canvasExpr, pngBase64, threshold });
+  }, { selector, pngBase64, threshold });
 }
+
+/** Fails unless every element of `selectors` lies inside the viewport
+ * (the page not scrolled) and nothing scrolls sideways. */
+async function assertOnScreen(page, selectors, size) {
+  const got = await page.evaluate((selectors) => ({
+    scrollX: window.scrollX,
+    scrollY: window.scrollY,
+    scrollWidth: document.documentElement.scrollWidth,
+    boxes: selectors.map((s) => {
+      const r = document.querySelector(s).getBoundingClientRect();
+      return { s, left: r.left, top: r.top, right: r.right, bottom: r.bottom };
+    }),
+  }), selectors);
+  assert.equal(got.scrollY, 0);
+  assert.ok(got.scrollWidth <= size.width, `the page is ${got.scrollWidth} px wide at ${size.width}`);
+  for (const b of got.boxes) {
+    assert.ok(b.left >= 0 && b.right <= size.width && b.top >= 0 && b.bottom <= size.height,
+      `${b.s} is off screen at ${size.width}x${size.height}: ${JSON.stringify(b)}`);
+  }
+  return got;
+}
+
+/** Waits for the example pair loaded at start. */
+async function exampleLoaded(page) {
+  await page.waitForFunction(() => window.immerse && window.immerse.ready === true);
+  await page.waitForSelector("#curves li:nth-child(2)[data-status=ok]", { timeout: 20000 });
+  const names = await page.locator("#curves .name").allTextContents();
+  assert.deepEqual(names, ["1. ribbon-curl", "2. tail-loop"]);
+}
+
+/** Clicks a download link and returns the file name it saves as. */
+async function downloadName(page, selector) {
+  const [download] = await Promise.all([page.waitForEvent("download"), page.click(selector)]);
+  const name = download.suggestedFilename();
+  await download.delete();
+  return name;
+}
+
+const CONTROLS = ["#run", "#opt-frames", "#opt-path", "#opt-loop", "#opt-onion", "#dl-png", "#dl-gif", "#dl-svg", "#dl-lottie", "#dl-json", "#play", "#scrub", "#status"];
 
 test("playground: draw two curves, morph, scrub; the canvas is immerse morph's PNG", { timeout: 180000 }, async () => {
   const page = await context.newPage();
   const errors = watchConsole(page);
   await page.goto(url);
-  await page.waitForFunction(() => window.immerse && window.immerse.ready === true);
+  // One example pair is loaded at start.
+  await exampleLoaded(page);
+  await page.click("#clear-all");
+  assert.equal(await page.locator("#curves li").count(), 0);
 
   const c = SIZE / 2;
   await drawFreehand(page, ellipse(c, c, 170, 120, 48));
@@ -201,7 +257,18 @@ test("playground: draw two curves, morph, scrub; the canvas is immerse morph's P
   assert.deepEqual(verdicts, ["✓ self-overlapping", "✓ self-overlapping"]);
   const facts = await page.locator("#curves .facts").allTextContents();
   assert.match(facts[1], /turning number -?1 · crosses itself/);
+  // The buttons of a curve name it when read out.
+  assert.match(await page.locator("#curves li:nth-child(2) button[title=remove]").getAttribute("aria-label"), /^Remove curve 2 \(drawn curve \d+\)$/);
 
+  // The reference list tags every curve that is not self-overlapping,
+  // as the server's check finds it.
+  const tags = await page.evaluate(async () => {
+    const r = await (await fetch("/api/curves")).json();
+    const shown = [...document.querySelectorAll("#reference option")].slice(1).map((o) => o.textContent);
+    return r.curves.map((c, i) => [shown[i], c.self_overlapping]);
+  });
+  for (const [text, ok] of tags) assert.equal(text.endsWith("(not self-overlapping)"), !ok, text);
+  assert.ok(tags.length >= 8 && tags.some(([, ok]) => !ok), JSON.stringify(tags));
   // A reference curve that is not self-overlapping says why.
   const eight = await page.locator("#reference option", { hasText: "figure-eight" }).getAttribute("value");
   await page.selectOption("#reference", eight);
@@ -212,12 +279,32 @@ test("playground: draw two curves, morph, scrub; the canvas is immerse morph's P
   assert.equal(await page.isDisabled("#run"), true, "Morph is disabled while a curve cannot be morphed");
   await page.locator("#curves li:nth-child(3) button[title=remove]").click();
 
-  // Loading a curve file (SVG here) works the same way.
+  // Loading a curve file (SVG here) works the same way; a bad file's
+  // message names it once.
   await page.setInputFiles("#file", join(root, "curves/tail-loop.svg"));
   await page.waitForSelector("#curves li:nth-child(3)[data-status=ok]", { timeout: 20000 });
   assert.equal(await page.locator("#curves li:nth-child(3) .name").textContent(), "3. tail-loop");
   await page.locator("#curves li:nth-child(3) button[title=remove]").click();
+  await page.setInputFiles("#file", { name: "broken.svg", mimeType: "image/svg+xml", buffer: Buffer.from("<svg") });
+  await page.waitForFunction(() => document.getElementById("status").textContent.startsWith("broken.svg: "));
+  const message = await page.locator("#status").textContent();
+  assert.equal(message.split("broken.svg").length - 1, 1, message);
+
+  // Pasted points: x y per line.
+  await page.click("#paste-box summary");
+  await page.fill("#paste", "0 0\n100 0\n100 80\n0 80\n");
+  await page.click("#add-paste");
+  await page.waitForSelector("#curves li:nth-child(3)[data-status=ok]", { timeout: 20000 });
+  assert.match(await page.locator("#curves li:nth-child(3) .name").textContent(), /^3\. pasted curve \d+$/);
+  assert.equal(await page.locator("#curves li:nth-child(3) .facts").textContent(), "4 points · turning number 1 · simple");
+  await page.locator("#curves li:nth-child(3) button[title=remove]").click();
   assert.equal(await page.locator("#curves li").count(), 2);
+  await page.click("#paste-box summary");
+
+  // frames must be whole: the page says so in words, before any request.
+  await page.fill("#opt-frames", "2.5");
+  await page.click("#run");
+  assert.equal(await page.locator("#status").textContent(), "frames: 2.5 is not a whole number from 2 to 240");
 
   await page.fill("#opt-frames", String(FRAMES));
   const t0 = Date.now();
@@ -230,12 +317,16 @@ test("playground: draw two curves, morph, scrub; the canvas is immerse morph's P
   const motion = await page.evaluate(() => window.immerse.lastMorph.morph.motion);
   assert.ok(motion.detour >= 1 && motion.unwind > 0, JSON.stringify(motion));
   assert.ok(status.includes(`detour ${motion.detour.toFixed(2)}, unwind ${motion.unwind.toFixed(2)}`), status);
+  // After a morph, with its long status line, every control and download
+  // is on screen at 1280x800.
+  measured.layout_1280 = (await assertOnScreen(page, CONTROLS, DESKTOP)).scrollWidth;
 
   // Scrub with the slider (keyboard, as a person would), then play a bit.
   await page.locator("#scrub").focus();
   for (let i = 0; i < SCRUB_TO; i++) await page.keyboard.press("ArrowRight");
   await page.waitForSelector(`#stage[data-shown='${SCRUB_TO}']`, { timeout: 20000 });
   assert.equal(await page.locator("#frame-label").textContent(), `frame ${SCRUB_TO} / ${FRAMES - 1}`);
+  assert.equal(await page.locator("#scrub").getAttribute("aria-valuetext"), `frame ${SCRUB_TO} of ${FRAMES - 1}`);
 
   // The same curves through the command line.
   const curves = await page.evaluate(() => window.immerse.state.curves.map((c) => c.points));
@@ -250,7 +341,7 @@ test("playground: draw two curves, morph, scrub; the canvas is immerse morph's P
   execFileSync(BIN, ["morph", a, b, "--frames", String(FRAMES), "--size", `${SIZE}x${SIZE}`, "--format", "lottie", "-o", cliLottie, "--quiet"]);
   const png = readFileSync(join(framesDir, `frame_${String(SCRUB_TO).padStart(4, "0")}.png`)).toString("base64");
 
-  const diff = await compareWithPng(page, "document.getElementById('stage')", png, 2);
+  const diff = await compareWithPng(page, "#stage", png, 2);
   assert.equal(diff.error, undefined, diff.error);
   measured.canvas_vs_png = diff;
   assert.ok(diff.max <= 2, `canvas differs from immerse morph's PNG by up to ${diff.max} in a channel`);
@@ -267,6 +358,18 @@ test("playground: draw two curves, morph, scrub; the canvas is immerse morph's P
   const pngDownload = await get(job.frame.replace("{k}", String(SCRUB_TO)));
   assert.equal(pngDownload.toString("base64"), png);
 
+  // The names the downloads save as; the GIF shows its progress.
+  assert.equal(await downloadName(page, "#dl-png"), `immerse-frame-${String(SCRUB_TO).padStart(4, "0")}.png`);
+  assert.equal(await downloadName(page, "#dl-json"), "immerse-morph.json");
+  await page.evaluate(() => {
+    window.sawGifProgress = false;
+    const bar = document.getElementById("gif-progress");
+    new MutationObserver(() => { if (!bar.hidden) window.sawGifProgress = true; }).observe(bar, { attributes: true });
+  });
+  assert.equal(await downloadName(page, "#dl-gif"), "immerse-morph.gif");
+  assert.equal(await page.evaluate(() => window.sawGifProgress), true, "no GIF progress was shown");
+  await page.waitForFunction(() => document.getElementById("download-info").textContent.startsWith("GIF saved"));
+
   // Play for a moment, stop at the scrubbed frame for the screenshot.
   await page.click("#play");
   await page.waitForTimeout(400);
@@ -276,6 +379,125 @@ test("playground: draw two curves, morph, scrub; the canvas is immerse morph's P
   mkdirSync(dirname(SCREENSHOT), { recursive: true });
   await page.screenshot({ path: SCREENSHOT });
 
+  // Changing the curves makes the downloads stale until the next morph.
+  const eightAgain = await page.locator("#reference option", { hasText: "letter-S" }).getAttribute("value");
+  await page.selectOption("#reference", eightAgain);
+  await page.click("#add-reference");
+  await page.waitForSelector("#curves li:nth-child(3)[data-status=ok]", { timeout: 20000 });
+  for (const id of ["#dl-png", "#dl-gif", "#dl-svg", "#dl-lottie", "#dl-json"]) {
+    assert.equal(await page.getAttribute(id, "aria-disabled"), "true", `${id} stays active after the curves changed`);
+  }
+  await page.locator("#curves li:nth-child(3) button[title=remove]").click();
+  assert.equal(await page.getAttribute("#dl-json", "aria-disabled"), "true");
+
+  // A GIF plays at most 50 fps: at 60 the page offers no GIF and says why,
+  // as the command line refuses one.
+  await page.fill("#opt-frames", "6");
+  await page.fill("#opt-fps", "60");
+  await page.click("#run");
+  await page.waitForSelector("#stage[data-shown='0']", { timeout: 60000 });
+  assert.equal(await page.getAttribute("#dl-gif", "aria-disabled"), "true");
+  assert.equal(await page.getAttribute("#dl-svg", "aria-disabled"), "false");
+  assert.match(await page.locator("#download-info").textContent(), /a GIF plays at most 50/);
+  await page.fill("#opt-fps", "0.01");
+  await page.click("#run");
+  assert.equal(await page.locator("#status").textContent(), "frames / second: 0.01 is not a rate from 0.1 to 1000 frames per second");
+  await page.fill("#opt-fps", "30");
+
+  // cubic-bezier easing: the frame times are those of the command line;
+  // one that overshoots is refused in the same words.
+  await page.selectOption("#opt-easing", "cubic-bezier");
+  assert.equal(await page.isVisible("#bezier"), true);
+  for (const [id, v] of [["#bz-x1", "0.2"], ["#bz-y1", "0.8"], ["#bz-x2", "0.6"], ["#bz-y2", "1"]]) await page.fill(id, v);
+  const previous = await page.evaluate(() => window.immerse.lastMorph.id);
+  await page.click("#run");
+  await page.waitForFunction((p) => window.immerse.lastMorph.id !== p && document.getElementById("stage").dataset.shown === "0", previous);
+  const times = await page.evaluate(() => window.immerse.lastMorph.morph.frames.map((f) => f.t));
+  const eased = join(work, "eased.json");
+  execFileSync(BIN, ["morph", a, b, "--frames", "6", "--easing", "cubic-bezier(0.2,0.8,0.6,1)", "--json", eased, "--quiet"]);
+  assert.deepEqual(times, JSON.parse(readFileSync(eased)).frames.map((f) => f.t));
+  await page.fill("#bz-y2", "1.1");
+  await page.click("#run");
+  await page.waitForFunction(() => document.getElementById("status").className === "error");
+  assert.match(await page.locator("#status").textContent(),
+    /^The morph failed: "easing": cubic-bezier\(0\.2,0\.8,0\.6,1\.1\): frame fraction [0-9.]+ \(at position \d\) is not a number in \[0, 1\]$/);
+
+  // The only failed requests are the two bad inputs sent on purpose (the
+  // broken SVG, the easing that overshoots): Chromium logs each.
+  const refused = "Failed to load resource: the server responded with a status of 400 (Bad Request)";
+  assert.equal(errors.filter((e) => e === refused).length, 2, JSON.stringify(errors));
+  assert.deepEqual(errors.filter((e) => e !== refused), [], "console errors on the playground");
+  await page.close();
+});
+
+test("playground: a click on the picture pauses and resumes playback", { timeout: 120000 }, async () => {
+  const page = await context.newPage();
+  const errors = watchConsole(page);
+  await page.goto(url);
+  await exampleLoaded(page);
+  await page.fill("#opt-frames", "40");
+  await page.fill("#opt-fps", "10");
+  await page.click("#run");
+  await page.waitForSelector("#stage[data-shown='0']", { timeout: 60000 });
+  const box = await page.locator("#stage").boundingBox();
+  const middle = [box.x + box.width / 2, box.y + box.height / 2];
+  // Play, then click the picture: paused on a frame, still showing the morph.
+  await page.click("#play");
+  await page.waitForFunction(() => Number(document.getElementById("stage").dataset.shown) >= 2, null, { timeout: 20000 });
+  await page.mouse.click(...middle);
+  const paused = await page.evaluate(() => ({ playing: window.immerse.state.playing, mode: window.immerse.state.mode, label: document.getElementById("play").textContent }));
+  assert.deepEqual(paused, { playing: false, mode: "play", label: "Play" });
+  const at = await page.getAttribute("#stage", "data-shown");
+  await page.waitForTimeout(400);
+  assert.equal(await page.getAttribute("#stage", "data-shown"), at, "the picture moved while paused");
+  assert.equal(await page.locator("#status").getAttribute("class"), "", "a click while playing gave an error");
+  assert.match(await page.locator("#status").textContent(), /^40 frames, every one an immersed disk/);
+  assert.equal(await page.locator("#curves li").count(), 2, "the click drew a curve");
+  // Another click plays on from there.
+  await page.mouse.click(...middle);
+  await page.waitForFunction((from) => document.getElementById("stage").dataset.shown !== from, at, { timeout: 5000 });
+  assert.equal(await page.evaluate(() => window.immerse.state.playing), true);
+  await page.mouse.click(...middle);
+  assert.equal(await page.evaluate(() => window.immerse.state.playing), false);
+  // Edit curves goes back to drawing.
+  await page.click("#edit");
+  assert.equal(await page.evaluate(() => window.immerse.state.mode), "edit");
+  assert.deepEqual(errors, [], "console errors on the playground");
+  await page.close();
+});
+
+test("playground: at 390x844 nothing scrolls sideways and the controls stack", { timeout: 120000 }, async () => {
+  const page = await context.newPage();
+  await page.setViewportSize(PHONE);
+  const errors = watchConsole(page);
+  await page.goto(url);
+  await exampleLoaded(page);
+  const before = await page.evaluate(() => document.documentElement.scrollWidth);
+  assert.ok(before <= PHONE.width, `the page is ${before} px wide`);
+  await page.fill("#opt-frames", "30");
+  await page.click("#run");
+  await page.waitForSelector("#stage[data-shown='0']", { timeout: 60000 });
+  const layout = await page.evaluate(() => {
+    const r = (s) => document.querySelector(s).getBoundingClientRect();
+    const right = Math.max(...[...document.querySelectorAll("body *")].map((e) => e.getBoundingClientRect().right));
+    return { scrollWidth: document.documentElement.scrollWidth, right, canvas: r("#stage").width, toolbar: r(".toolbar").right, options: r(".options-col").top, curves: r(".curves-col").top, stageBottom: r(".stage-col").bottom };
+  });
+  measured.layout_390 = layout;
+  assert.ok(layout.scrollWidth <= PHONE.width, `the page is ${layout.scrollWidth} px wide after a morph`);
+  assert.ok(layout.right <= PHONE.width + 0.5, `an element reaches x = ${layout.right}`);
+  assert.ok(layout.canvas <= PHONE.width && layout.canvas >= 300, `the canvas is ${layout.canvas} px wide`);
+  // The columns stack: the curves, then the options, below the picture.
+  assert.ok(layout.curves >= layout.stageBottom - 1 && layout.options > layout.curves, JSON.stringify(layout));
+  // The scaled picture still plays and pauses on a click.
+  await page.click("#play");
+  await page.waitForFunction(() => Number(document.getElementById("stage").dataset.shown) >= 2, null, { timeout: 20000 });
+  await page.locator("#stage").scrollIntoViewIfNeeded();
+  const box = await page.locator("#stage").boundingBox();
+  await page.mouse.click(box.x + box.width / 2, box.y + box.height / 2);
+  assert.equal(await page.evaluate(() => window.immerse.state.playing), false);
+  await page.evaluate(() => window.scrollTo(0, 0));
+  mkdirSync(dirname(SCREENSHOT_PHONE), { recursive: true });
+  await page.screenshot({ path: SCREENSHOT_PHONE });
   assert.deepEqual(errors, [], "console errors on the playground");
   await page.close();
 });
@@ -311,7 +533,7 @@ test("lottie: lottie-web renders immerse's Lottie like immerse's PNG", { timeout
   for (const frame of [SCRUB_TO, FRAMES - 1]) {
     await page.evaluate((k) => window.anim.goToAndStop(k, true), frame);
     const png = readFileSync(join(framesDir, `frame_${String(frame).padStart(4, "0")}.png`)).toString("base64");
-    const diff = await compareWithPng(page, "document.getElementById('lottie')", png, 32);
+    const diff = await compareWithPng(page, "#lottie", png, 32);
     assert.equal(diff.error, undefined, diff.error);
     measured[`lottie_vs_png_frame_${frame}`] = diff;
     assert.ok(diff.overFraction <= 0.02, `frame ${frame}: ${(diff.overFraction * 100).toFixed(2)}% of the pixels differ by more than 32`);

@@ -235,17 +235,20 @@ fn bad_easing_fps_and_image_type() {
     for (fps, shown) in [
         ("0", "0"),
         ("-3", "-3"),
+        ("0.05", "0.05"),
+        ("1e-300", "1e-300"),
+        ("1001", "1001"),
         ("1e9", "1000000000"),
         ("NaN", "NaN"),
     ] {
-        assert_stderr(
-            None,
-            &["morph", tri, tri, &format!("--fps={fps}")],
-            2,
-            &format!(
-                "immerse: --fps {shown} is not a rate above 0 and at most 1000 frames per second"
-            ),
-        );
+        for command in ["morph", "mesh-morph"] {
+            assert_stderr(
+                None,
+                &[command, tri, tri, &format!("--fps={fps}")],
+                2,
+                &format!("immerse: --fps {shown} is not a rate from 0.1 to 1000 frames per second"),
+            );
+        }
     }
     let d = tempfile::tempdir().unwrap();
     assert_stderr(

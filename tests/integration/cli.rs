@@ -532,3 +532,71 @@ fn write_polygon(path: &std::path::Path, m: usize) {
         .collect();
     std::fs::write(path, serde_json::to_string(&pts).unwrap()).unwrap();
 }
+
+/// Every input is read through its size cap: a curve, timeline or mesh
+/// file that is a link to `/dev/zero` stops at the cap with exit 2, where
+/// a length check alone would read without end; a FIFO that a writer
+/// fills after the command has started is read whole.
+#[cfg(unix)]
+#[test]
+fn inputs_are_read_through_a_cap_devices_and_fifos_included() {
+    use std::os::unix::fs::symlink;
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for name in [
+        "zero.json",
+        "zero.svg",
+        "zero.txt",
+        "timeline.json",
+        "mesh.obj",
+    ] {
+        symlink("/dev/zero", d.join(name)).unwrap();
+    }
+    let curve_cap = immerse::curve::MAX_FILE_BYTES;
+    for name in ["zero.json", "zero.svg", "zero.txt"] {
+        assert_stderr(
+            Some(d),
+            &["check", name],
+            2,
+            &format!(
+                "immerse: {name}: too large (more than {curve_cap} bytes; the limit is {curve_cap} bytes); simplify the curve first"
+            ),
+        );
+    }
+    assert_stderr(
+        Some(d),
+        &["animate", "--timeline", "timeline.json"],
+        2,
+        "immerse: timeline.json: too large (more than 16777216 bytes; the limit is 16777216 bytes)",
+    );
+    let mesh_cap = immerse::tiling::MAX_FILE_BYTES;
+    assert_stderr(
+        Some(d),
+        &["mesh-morph", "mesh.obj", "mesh.obj", "--check-linear"],
+        2,
+        &format!(
+            "immerse: mesh.obj: too large (more than {mesh_cap} bytes; the limit is {mesh_cap} bytes)"
+        ),
+    );
+
+    // A FIFO: the command waits for a writer, then reads to the end.
+    let fifo = d.join("later.json");
+    let made = std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .expect("mkfifo runs");
+    assert!(made.success());
+    let reader = std::process::Command::new(env!("CARGO_BIN_EXE_immerse"))
+        .args(["check", fifo.to_str().unwrap(), "--json"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    let square = std::fs::read(curve("triangle.json")).unwrap();
+    std::fs::write(&fifo, &square).unwrap();
+    let out = reader.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["self_overlapping"], true);
+}

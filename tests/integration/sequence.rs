@@ -694,7 +694,7 @@ fn animate_timeline_errors_name_the_key_and_the_field() {
     .unwrap();
     std::fs::copy(curve("letter-C.svg"), dir.path().join("c.svg")).unwrap();
     let d = Some(dir.path());
-    let cases: [(&str, &str, i32, &str); 10] = [
+    let cases: [(&str, &str, i32, &str); 11] = [
         (
             "field.json",
             r#"{"keys": ["curl-strip-n10.json", {"curve": "circular-strip-450deg-n60.json", "durration": 1}]}"#,
@@ -742,6 +742,12 @@ fn animate_timeline_errors_name_the_key_and_the_field() {
             r#"{"keys": ["curl-strip-n10.json", {"curve": "circular-strip-450deg-n60.json", "easing": "bounce"}]}"#,
             2,
             "key 2: invalid easing 'bounce': unknown name; expected linear, ease, ease-in, ease-out, ease-in-out or cubic-bezier(x1,y1,x2,y2) with x1 and x2 in [0,1]",
+        ),
+        (
+            "fps.json",
+            r#"{"fps": 0.001, "keys": ["curl-strip-n10.json", "circular-strip-450deg-n60.json"]}"#,
+            2,
+            "\"fps\" 0.001 is not a rate from 0.1 to 1000 frames per second",
         ),
         (
             "drawing.json",
@@ -792,7 +798,7 @@ fn animate_timeline_errors_name_the_key_and_the_field() {
         (
             "--fps",
             "0",
-            "--fps 0 is not a rate above 0 and at most 1000 frames per second",
+            "--fps 0 is not a rate from 0.1 to 1000 frames per second",
         ),
     ] {
         let mut args = two.to_vec();

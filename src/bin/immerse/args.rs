@@ -89,8 +89,9 @@ pub(crate) enum Command {
     ///
     /// An HTTP server bound to 127.0.0.1 only, serving one self-contained
     /// page (embedded in the binary; no network is used) and a JSON API
-    /// (POST /api/morph, POST /api/check; see the README). Request sizes,
-    /// points, frames and concurrent jobs are bounded. Stops on Ctrl-C.
+    /// (POST /api/morph, POST /api/check; see the README). Every resource a
+    /// client can make it spend is bounded by one of the limits below.
+    /// Ctrl-C finishes the requests in flight, then stops.
     #[command(
         after_help = "Examples:\n  immerse serve\n  immerse serve --port 0 --open\n  immerse serve --port 8080 --max-jobs 4"
     )]
@@ -126,8 +127,8 @@ pub(crate) struct AnimateArgs {
     /// timeline's, else 2 seconds per segment at --fps).
     #[arg(long, value_parser = clap::value_parser!(u32).range(2..=100_000))]
     pub(crate) frames: Option<u32>,
-    /// Frames per second of the timing and of a GIF or animated SVG
-    /// (default: the timeline's, else 30).
+    /// Frames per second of the timing and of a GIF or animated SVG, from
+    /// 0.1 to 1000 (default: the timeline's, else 30).
     #[arg(long, allow_negative_numbers = true)]
     pub(crate) fps: Option<f64>,
     /// Easing of every segment without its own: linear keeps the speed
@@ -199,15 +200,73 @@ pub(crate) struct ServeArgs {
     /// Open the page in the default browser.
     #[arg(long)]
     pub(crate) open: bool,
-    /// Most morphs (and other heavy jobs) running at once; more get HTTP 429.
+    /// What the server bounds (README, "Playground": each limit and its answer).
+    #[command(flatten)]
+    pub(crate) limits: ServeLimits,
+}
+
+/// The limits of `immerse serve`: every resource a client can make the
+/// server spend is bounded by one of these.
+#[derive(Debug, Clone, Args)]
+#[command(next_help_heading = "Limits")]
+pub(crate) struct ServeLimits {
+    /// Most jobs at once: checks, morphs and every download (a frame, GIF,
+    /// SVG, Lottie or JSON file); a request waits for a free slot.
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=64))]
     pub(crate) max_jobs: u32,
-    /// Seconds a request waits for its morph before answering HTTP 503.
-    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    /// Seconds a job may take, the wait for its slot included; then HTTP
+    /// 503, and the job stops (a morph's planning runs to its end first).
+    #[arg(long, value_name = "SECONDS", default_value_t = 60, value_parser = clap::value_parser!(u64).range(1..=3600))]
     pub(crate) job_timeout: u64,
-    /// For tests: every job sleeps this many milliseconds before it starts.
-    #[arg(long, default_value_t = 0, hide = true)]
-    pub(crate) job_delay_ms: u64,
+    /// MiB of finished morphs kept for their frames and downloads; the
+    /// oldest are dropped first, and a larger morph gets HTTP 413.
+    #[arg(long, value_name = "MIB", default_value_t = 128, value_parser = clap::value_parser!(u64).range(1..=65536))]
+    pub(crate) job_memory: u64,
+    /// Most open connections; past it the oldest connection without a
+    /// request, or whose request still waits for a job slot or its body,
+    /// is closed; when none is, the new one gets HTTP 503.
+    #[arg(long, default_value_t = 128, value_parser = clap::value_parser!(u32).range(2..=10000))]
+    pub(crate) max_connections: u32,
+    /// Seconds a client has to send a request's headers; also how long an
+    /// idle connection is kept open.
+    #[arg(long, value_name = "SECONDS", default_value_t = 10, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    pub(crate) header_timeout: u64,
+    /// Largest request head (request line and headers), in bytes; larger
+    /// get HTTP 431.
+    #[arg(long, value_name = "BYTES", default_value_t = 16384, value_parser = clap::value_parser!(u32).range(1024..=1_048_576))]
+    pub(crate) max_header_bytes: u32,
+    /// Most header lines in one request; more get HTTP 431.
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(8..=1000))]
+    pub(crate) max_headers: u32,
+    /// Seconds a client has to send a request body once its job has a
+    /// slot; then HTTP 408.
+    #[arg(long, value_name = "SECONDS", default_value_t = 10, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    pub(crate) body_timeout: u64,
+    /// Largest request body, in bytes; larger get HTTP 413 (before the
+    /// body is read when its length is announced, else while reading).
+    #[arg(long, value_name = "BYTES", default_value_t = 2 << 20, value_parser = clap::value_parser!(u32).range(1024..=268_435_456))]
+    pub(crate) max_body_bytes: u32,
+    /// Seconds a response may wait for a client that stopped reading it;
+    /// then the connection is closed.
+    #[arg(long, value_name = "SECONDS", default_value_t = 20, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    pub(crate) write_timeout: u64,
+    /// Most points in one curve (as sent, or read from a file's text);
+    /// more get HTTP 413.
+    #[arg(long, default_value_t = 5000, value_parser = clap::value_parser!(u32).range(3..=200_000))]
+    pub(crate) max_points: u32,
+    /// Most frames of one morph; more get HTTP 400.
+    #[arg(long, default_value_t = 240, value_parser = clap::value_parser!(u32).range(2..=100_000))]
+    pub(crate) max_frames: u32,
+    /// Most curves (keys) in one morph; more get HTTP 400.
+    #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u32).range(2..=64))]
+    pub(crate) max_curves: u32,
+    /// Largest image side, in pixels; larger get HTTP 400.
+    #[arg(long, value_name = "PIXELS", default_value_t = 2048, value_parser = clap::value_parser!(u32).range(16..=8192))]
+    pub(crate) max_side: u32,
+    /// Seconds Ctrl-C waits for the requests in flight before the server
+    /// stops.
+    #[arg(long, value_name = "SECONDS", default_value_t = 5, value_parser = clap::value_parser!(u64).range(0..=600))]
+    pub(crate) drain_timeout: u64,
 }
 
 /// Mesh morph method.
@@ -281,7 +340,7 @@ pub(crate) struct MeshMorphArgs {
     #[arg(long, value_name = "WxH", default_value = "600x600", value_parser = parse_size)]
     pub(crate) size: (u32, u32),
     /// Frames per second of a GIF (at most 50: GIF delays are whole
-    /// hundredths of a second) or animated SVG.
+    /// hundredths of a second), animated SVG or Lottie, from 0.1 to 1000.
     #[arg(long, default_value_t = 30.0)]
     pub(crate) fps: f64,
     /// Replace existing output files; write into a non-empty folder,
@@ -507,7 +566,7 @@ pub(crate) struct MorphArgs {
     #[arg(long, value_name = "WxH", default_value = "600x600", value_parser = parse_size)]
     pub(crate) size: (u32, u32),
     /// Frames per second of a GIF (at most 50: GIF delays are whole
-    /// hundredths of a second) or animated SVG.
+    /// hundredths of a second), animated SVG or Lottie, from 0.1 to 1000.
     #[arg(long, default_value_t = 30.0)]
     pub(crate) fps: f64,
     /// Play the animation forwards then backwards, repeating.
@@ -601,6 +660,44 @@ mod tests {
         };
         assert_eq!(m.json, Some("-".into()));
         assert!(m.quiet);
+    }
+
+    #[test]
+    fn serve_limits_have_their_defaults_and_ranges() {
+        let cli = Cli::try_parse_from(["immerse", "serve"]).unwrap();
+        let Command::Serve(a) = cli.command else {
+            panic!("not serve")
+        };
+        let l = &a.limits;
+        assert_eq!(
+            (a.port, l.max_jobs, l.job_timeout, l.job_memory),
+            (7878, 2, 60, 128)
+        );
+        assert_eq!(
+            (l.max_connections, l.header_timeout, l.max_header_bytes),
+            (128, 10, 16384)
+        );
+        assert_eq!(
+            (l.max_body_bytes, l.body_timeout, l.write_timeout),
+            (2 << 20, 10, 20)
+        );
+        assert_eq!(
+            (l.max_points, l.max_frames, l.max_curves, l.max_side),
+            (5000, 240, 8, 2048)
+        );
+        for bad in [
+            ["--max-jobs", "0"],
+            ["--max-connections", "1"],
+            ["--max-header-bytes", "100"],
+            ["--job-memory", "0"],
+        ] {
+            assert!(
+                Cli::try_parse_from(["immerse", "serve", bad[0], bad[1]]).is_err(),
+                "{bad:?}"
+            );
+        }
+        // The test hook of the first server is gone.
+        assert!(Cli::try_parse_from(["immerse", "serve", "--job-delay-ms", "10"]).is_err());
     }
 
     #[test]

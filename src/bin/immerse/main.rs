@@ -24,9 +24,14 @@ pub(crate) enum Outcome {
     Negative,
 }
 
+/// What Ctrl-C, SIGTERM and SIGHUP do instead of exiting, for a command
+/// that stops by itself (`serve` finishes the requests in flight).
+pub(crate) static ON_INTERRUPT: std::sync::OnceLock<Box<dyn Fn() + Send + Sync>> =
+    std::sync::OnceLock::new();
+
 /// Exit code after an interrupt (Ctrl-C, SIGTERM, SIGHUP): 128 + SIGINT,
 /// as shells report it.
-const INTERRUPTED: i32 = 130;
+pub(crate) const INTERRUPTED: i32 = 130;
 
 fn main() -> ExitCode {
     // On Ctrl-C, SIGTERM or SIGHUP remove what is half-written (temporary
@@ -34,6 +39,10 @@ fn main() -> ExitCode {
     // interrupted run leaves no partial output. `ctrlc` runs the handler on
     // a thread of its own, where it may take locks and touch files.
     let _ = ctrlc::set_handler(|| {
+        if let Some(stop) = ON_INTERRUPT.get() {
+            stop();
+            return;
+        }
         let removed = immerse_render::remove_partial_outputs();
         output::note(&if removed > 0 {
             format!("interrupted; removed {removed} unfinished output(s)")

@@ -42,12 +42,7 @@ fn style(args: &MeshMorphArgs) -> render::Style {
 }
 
 pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
-    if !(args.fps.is_finite() && args.fps > 0.0 && args.fps <= 1000.0) {
-        anyhow::bail!(
-            "--fps {} is not a rate above 0 and at most 1000 frames per second",
-            args.fps
-        );
-    }
+    super::check_fps("--fps", args.fps)?;
     // Every output is checked before any work.
     let images = match &args.output {
         Some(out) if !args.check_linear => Some(super::check_images(

@@ -299,6 +299,33 @@ pub(crate) fn check_images(
     Ok(ImageOutput { format, columns })
 }
 
+/// The message for a frame rate outside the one range of every `--fps`
+/// and of the playground ([`immerse_render::fps_in_range`]); `what` names
+/// it (`--fps`).
+pub(crate) fn fps_error(what: &str, fps: f64) -> Option<String> {
+    // A tiny or huge rate in scientific notation, not hundreds of digits.
+    let shown = if fps != 0.0 && !(1e-4..1e16).contains(&fps.abs()) {
+        format!("{fps:e}")
+    } else {
+        format!("{fps}")
+    };
+    (!immerse_render::fps_in_range(fps)).then(|| {
+        format!(
+            "{what} {shown} is not a rate from {} to {} frames per second",
+            immerse_render::MIN_FPS,
+            immerse_render::MAX_FPS
+        )
+    })
+}
+
+/// Checks a frame rate given as `what` (see [`fps_error`]).
+pub(crate) fn check_fps(what: &str, fps: f64) -> anyhow::Result<()> {
+    match fps_error(what, fps) {
+        Some(message) => Err(anyhow::anyhow!(message)),
+        None => Ok(()),
+    }
+}
+
 /// The render crate's frames for a morph's frames (outline = all points).
 pub(crate) fn render_frames(frames: &[immerse::frames::Frame]) -> Vec<immerse_render::Frame> {
     frames

@@ -50,12 +50,7 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         .easing
         .parse()
         .with_context(|| format!("--easing '{}'", args.easing))?;
-    if !(args.fps.is_finite() && args.fps > 0.0 && args.fps <= 1000.0) {
-        anyhow::bail!(
-            "--fps {} is not a rate above 0 and at most 1000 frames per second",
-            args.fps
-        );
-    }
+    super::check_fps("--fps", args.fps)?;
     // Every output is checked before any work: nothing is computed for
     // an output that would then be refused.
     let images = match &args.output {

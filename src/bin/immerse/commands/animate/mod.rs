@@ -45,10 +45,8 @@ pub(crate) fn run(args: &AnimateArgs) -> anyhow::Result<Outcome> {
     {
         anyhow::bail!("--hold {h} is not a number of seconds of at least 0");
     }
-    if let Some(fps) = args.fps
-        && !(fps.is_finite() && fps > 0.0 && fps <= 1000.0)
-    {
-        anyhow::bail!("--fps {fps} is not a rate above 0 and at most 1000 frames per second");
+    if let Some(fps) = args.fps {
+        super::check_fps("--fps", fps)?;
     }
     let svg_mode = args.svg_keys.map(SvgShapes::from);
     // Where the keys come from, and the prefix of messages about them.
@@ -56,6 +54,9 @@ pub(crate) fn run(args: &AnimateArgs) -> anyhow::Result<Outcome> {
         Some(path) => (timeline::read(path)?, format!("{}: ", path.display())),
         None => (positional(&args.keys)?, String::new()),
     };
+    if let (None, Some(fps)) = (args.fps, tl.fps) {
+        super::check_fps(&format!("{prefix}\"fps\""), fps)?;
+    }
     let svg_mode = svg_mode.or(tl.svg_keys).unwrap_or_default();
     if let Some(json) = &args.json {
         super::check_output_file(json, args.force)?;

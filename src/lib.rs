@@ -59,6 +59,7 @@
 //! ```
 #![deny(rustdoc::broken_intra_doc_links)]
 
+pub mod certify;
 pub mod coords;
 pub mod correspond;
 pub mod curve;

@@ -379,8 +379,7 @@ pub(crate) fn positive_on(q: &Quad, l: &Alg, r: &Alg) -> bool {
         return true;
     }
     let v = Alg::rational(-&q.c1, &q.c2 << 1);
-    let inside =
-        l.cmp(&v) == Some(Ordering::Less) && v.cmp(r) == Some(Ordering::Less);
+    let inside = l.cmp(&v) == Some(Ordering::Less) && v.cmp(r) == Some(Ordering::Less);
     // Minimum value c0 − c1²/(4 c2) > 0 ⇔ 4 c2 c0 − c1² > 0.
     !inside || sgn(&q.discriminant()) < 0
 }
@@ -394,8 +393,7 @@ pub(crate) fn nonpositive_on(g: &Quad, l: &Alg, r: &Alg) -> bool {
         return true;
     }
     let v = Alg::rational(-&g.c1, &g.c2 << 1);
-    let inside =
-        l.cmp(&v) == Some(Ordering::Less) && v.cmp(r) == Some(Ordering::Less);
+    let inside = l.cmp(&v) == Some(Ordering::Less) && v.cmp(r) == Some(Ordering::Less);
     // Maximum value g0 − g1²/(4 g2) ≤ 0 ⇔ (g2 < 0) g1² − 4 g2 g0 ≤ 0.
     !inside || sgn(&g.discriminant()) <= 0
 }
@@ -441,7 +439,10 @@ pub(crate) fn fan_ok(cross: &Quad, dot: &Quad, k: &BigInt, l: &Alg, r: &Alg) -> 
 /// its way up), exactly when `a` is rational; else `[a, b]` itself.
 fn first_bad(g: &Quad, a: Alg, b: Alg) -> Bad {
     if g.sign_at(&a) > 0 {
-        return Bad { lo: a.clone(), hi: a };
+        return Bad {
+            lo: a.clone(),
+            hi: a,
+        };
     }
     if a.is_rational() {
         // g ≤ 0 at a and > 0 somewhere in [a, b]: the first root where it
@@ -451,7 +452,10 @@ fn first_bad(g: &Quad, a: Alg, b: Alg) -> Bad {
                 continue;
             }
             if crosses_up(g, &x, &b) {
-                return Bad { lo: x.clone(), hi: x };
+                return Bad {
+                    lo: x.clone(),
+                    hi: x,
+                };
             }
         }
     }
@@ -598,7 +602,10 @@ mod tests {
         let bad = first_nonpositive(&q(1, 0, -2), &r(1, 4), &one);
         assert_eq!(bad.approx(), 0.5f64.sqrt());
         let (lo, hi) = bad.bracket(0.25, 1.0, true);
-        assert!(lo < 0.5f64.sqrt() + 1e-16 && lo.next_up() == hi, "{lo} {hi}");
+        assert!(
+            lo < 0.5f64.sqrt() + 1e-16 && lo.next_up() == hi,
+            "{lo} {hi}"
+        );
     }
 
     #[test]

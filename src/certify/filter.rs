@@ -70,8 +70,7 @@ impl Fe {
         let v = self.v * o.v;
         Fe {
             v,
-            e: (self.v.abs() * o.e + o.v.abs() * self.e + self.e * o.e + U * v.abs()) * GROW
-                + ETA,
+            e: (self.v.abs() * o.e + o.v.abs() * self.e + self.e * o.e + U * v.abs()) * GROW + ETA,
         }
     }
 
@@ -213,7 +212,9 @@ pub(crate) fn fan(p: &[Point], q: &[Point], v: usize, delta: &[f64]) -> bool {
     let k = margin(&a, &b, delta[v] + delta[next], delta[v] + delta[prev]);
     let c = cross_bern(&a, &b);
     // |cross| > k throughout, or dot < −k throughout.
-    c.minus(k).positive() || c.neg().minus(k).positive() || dot_bern(&a, &b).neg().minus(k).positive()
+    c.minus(k).positive()
+        || c.neg().minus(k).positive()
+        || dot_bern(&a, &b).neg().minus(k).positive()
 }
 
 /// Upper bounds of the vertex displacement bounds δ_v = 2^shift · m_v

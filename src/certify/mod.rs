@@ -131,8 +131,7 @@ impl Player {
     /// largest coordinate magnitude (at either end of the segment) is
     /// `magnitude` (docs/design.md §13).
     pub fn delta(self, magnitude: f64) -> f64 {
-        self.shift()
-            .map_or(0.0, |k| magnitude.abs() * 2f64.powi(k))
+        self.shift().map_or(0.0, |k| magnitude.abs() * 2f64.powi(k))
     }
 }
 
@@ -178,9 +177,9 @@ impl fmt::Display for SParam {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match &self.exact {
             Some(x) if self.lo == self.hi => write!(f, "s = {x}"),
-            Some(x) => write!(f, "s = {x} ≈ {:.6}", self.approx()),
-            None if self.lo.next_up() >= self.hi => write!(f, "s ≈ {:.6}", self.approx()),
-            None => write!(f, "s in [{:.6}, {:.6}]", self.lo, self.hi),
+            Some(x) => write!(f, "s = {x} ≈ {}", self.lo),
+            None if self.lo.next_up() >= self.hi => write!(f, "s ≈ {}", self.lo),
+            None => write!(f, "s in [{}, {}]", self.lo, self.hi),
         }
     }
 }
@@ -209,8 +208,13 @@ pub enum Defect {
 impl fmt::Display for Defect {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Defect::Start(d) => write!(f, "the triangulation is not valid where the segment starts ({d})"),
-            Defect::Triangle { corners: [a, b, c], .. } => {
+            Defect::Start(d) => write!(
+                f,
+                "the triangulation is not valid where the segment starts ({d})"
+            ),
+            Defect::Triangle {
+                corners: [a, b, c], ..
+            } => {
                 write!(f, "triangle ({a}, {b}, {c}) turns over")
             }
             Defect::Fan { vertex } => write!(f, "the fan at vertex {vertex} wraps (a full turn)"),
@@ -235,7 +239,12 @@ pub struct Failure {
 impl fmt::Display for Failure {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match (&self.defect, self.within_margin) {
-            (Defect::Triangle { corners: [a, b, c], .. }, true) => write!(
+            (
+                Defect::Triangle {
+                    corners: [a, b, c], ..
+                },
+                true,
+            ) => write!(
                 f,
                 "triangle ({a}, {b}, {c}) comes within the player's rounding of turning over at {}",
                 self.at
@@ -276,7 +285,9 @@ impl SegmentReport {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum CertifyError {
     /// The two ends have different numbers of points.
-    #[error("the two shapes have {start} and {end} points; a straight-line motion needs the same number")]
+    #[error(
+        "the two shapes have {start} and {end} points; a straight-line motion needs the same number"
+    )]
     CountMismatch {
         /// Points at the start.
         start: usize,
@@ -475,7 +486,11 @@ fn earliest(found: Vec<Found>, s0: f64, s1: f64) -> Option<Failure> {
         }
         let (lo, _) = f.lo.bracket(s0, s1, true);
         let (_, hi) = f.hi.bracket(s0, s1, true);
-        let exact = if f.lo == f.hi { f.lo.as_fraction() } else { None };
+        let exact = if f.lo == f.hi {
+            f.lo.as_fraction()
+        } else {
+            None
+        };
         if best.as_ref().is_none_or(|(_, b)| lo < *b) {
             best = Some((
                 Failure {
@@ -741,7 +756,8 @@ pub fn certify_keys(keys: &[Key<'_>], player: Player) -> Result<KeysReport, Cert
         return Err(CertifyError::NoKeys);
     };
     for (i, k) in keys.iter().enumerate() {
-        if !k.t.is_finite() || (i > 0 && k.t.partial_cmp(&keys[i - 1].t) != Some(Ordering::Greater)) {
+        if !k.t.is_finite() || (i > 0 && k.t.partial_cmp(&keys[i - 1].t) != Some(Ordering::Greater))
+        {
             return Err(CertifyError::KeyTime { key: i, t: k.t });
         }
         check_input(first.points, k.points, 0.0, 0.0).map_err(|e| CertifyError::InKey {
@@ -753,8 +769,6 @@ pub fn certify_keys(keys: &[Key<'_>], player: Player) -> Result<KeysReport, Cert
         .par_windows(2)
         .map(|w| certify_segment(w[0].points, w[1].points, w[0].triangles, player))
         .collect::<Result<Vec<_>, _>>()?;
-    let last = keys
-        .last()
-        .and_then(|k| check(k.points, k.triangles).err());
+    let last = keys.last().and_then(|k| check(k.points, k.triangles).err());
     Ok(KeysReport { segments, last })
 }

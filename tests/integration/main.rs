@@ -6,6 +6,7 @@
 )]
 
 mod catalogue;
+mod certify;
 mod cli;
 mod curves;
 mod immersion;

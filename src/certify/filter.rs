@@ -233,6 +233,40 @@ pub(crate) fn deltas(p: &[Point], q: &[Point], shift: Option<i32>) -> Vec<f64> {
         .collect()
 }
 
+/// The point `p + s(q − p)` with error bounds per coordinate.
+pub(crate) fn point_at(p: Point, q: Point, s: f64) -> [Fe; 2] {
+    let f = |a: f64, b: f64| {
+        let (a, b) = (Fe::exact(a), Fe::exact(b));
+        a.add(Fe::exact(s).mul(b.sub(a)))
+    };
+    [f(p.x, q.x), f(p.y, q.y)]
+}
+
+/// The sign of `orient(a, b, c)` when the bounds decide it.
+pub(crate) fn orient_sign(a: [Fe; 2], b: [Fe; 2], c: [Fe; 2]) -> Option<i32> {
+    let det = cross(
+        b[0].sub(a[0]),
+        b[1].sub(a[1]),
+        c[0].sub(a[0]),
+        c[1].sub(a[1]),
+    );
+    if det.pos() {
+        Some(1)
+    } else if det.neg().pos() {
+        Some(-1)
+    } else {
+        None
+    }
+}
+
+/// True when the two points surely differ.
+pub(crate) fn surely_apart(a: [Fe; 2], b: [Fe; 2]) -> bool {
+    (0..2).any(|k| {
+        let d = a[k].sub(b[k]);
+        d.pos() || d.neg().pos()
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -70,9 +70,12 @@
 
 mod exact;
 mod filter;
+pub mod motion;
 
 use std::cmp::Ordering;
 use std::fmt;
+
+pub use motion::{MotionOptions, MotionReport, Verdict, certify_motion};
 
 use exact::{Alg, Quad, Scaled, fan_ok, first_nonpositive, positive_on};
 use num_bigint::BigInt;

@@ -68,14 +68,18 @@
 //! # Ok::<(), immerse::certify::CertifyError>(())
 //! ```
 
+pub mod animation;
 mod exact;
 mod filter;
 pub mod motion;
+pub mod read;
 
 use std::cmp::Ordering;
 use std::fmt;
 
+pub use animation::{AnimationReport, Answer, certify_animation};
 pub use motion::{MotionOptions, MotionReport, Verdict, certify_motion};
+pub use read::{Animation, read_animation};
 
 use exact::{Alg, Quad, Scaled, fan_ok, first_nonpositive, positive_on};
 use num_bigint::BigInt;
@@ -179,7 +183,7 @@ impl SParam {
 impl fmt::Display for SParam {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match &self.exact {
-            Some(x) if self.lo == self.hi => write!(f, "s = {x}"),
+            Some(_) if self.lo == self.hi => write!(f, "s = {}", self.lo),
             Some(x) => write!(f, "s = {x} ≈ {}", self.lo),
             None if self.lo.next_up() >= self.hi => write!(f, "s ≈ {}", self.lo),
             None => write!(f, "s in [{}, {}]", self.lo, self.hi),

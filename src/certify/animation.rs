@@ -5,8 +5,8 @@
 
 use rayon::prelude::*;
 
-use super::read::{AnimatedPath, Animation, Format, Play};
 use super::motion::{Piece, Source};
+use super::read::{AnimatedPath, Animation, Format, Play};
 use super::{Defect, Failure, MotionOptions, Player, SParam, Verdict, certify_motion};
 use crate::immersion::check;
 use crate::quality::{Quality, triangulate_with};
@@ -141,7 +141,11 @@ pub struct AnimationReport {
 }
 
 /// Certify every animated outline of `anim` against `player`.
-pub fn certify_animation(anim: &Animation, player: Player, options: MotionOptions) -> AnimationReport {
+pub fn certify_animation(
+    anim: &Animation,
+    player: Player,
+    options: MotionOptions,
+) -> AnimationReport {
     let paths: Vec<PathOutcome> = anim
         .paths
         .iter()
@@ -184,13 +188,21 @@ fn static_check(points: &[crate::Point], triangles: Option<&[[u32; 3]]>) -> Resu
     }
 }
 
-fn certify_path(path: &AnimatedPath, format: Format, player: Player, options: MotionOptions) -> PathOutcome {
+fn certify_path(
+    path: &AnimatedPath,
+    format: Format,
+    player: Player,
+    options: MotionOptions,
+) -> PathOutcome {
     let segments: Vec<SegmentOutcome> = (0..path.keys.len().saturating_sub(1))
         .into_par_iter()
         .map(|i| certify_one(path, i, format, player, options))
         .collect();
     let last_key = path.keys.last().and_then(|k| {
-        let covered = path.play.last().is_none_or(|p| !matches!(p, Play::NotCovered(_)));
+        let covered = path
+            .play
+            .last()
+            .is_none_or(|p| !matches!(p, Play::NotCovered(_)));
         (covered && k.points.len() >= 3)
             .then(|| static_check(&k.points, k.triangles.as_deref()).err())
             .flatten()
@@ -213,7 +225,13 @@ fn certify_path(path: &AnimatedPath, format: Format, player: Player, options: Mo
     }
 }
 
-fn certify_one(path: &AnimatedPath, i: usize, format: Format, player: Player, options: MotionOptions) -> SegmentOutcome {
+fn certify_one(
+    path: &AnimatedPath,
+    i: usize,
+    format: Format,
+    player: Player,
+    options: MotionOptions,
+) -> SegmentOutcome {
     let (a, b) = (&path.keys[i], &path.keys[i + 1]);
     let play = &path.play[i];
     let mut out = SegmentOutcome {
@@ -270,9 +288,8 @@ fn certify_one(path: &AnimatedPath, i: usize, format: Format, player: Player, op
     match r.verdict {
         Verdict::Certified => {
             out.answer = Answer::Certified;
-            out.as_given = !given.is_empty()
-                && r.pieces.len() == 1
-                && r.pieces[0].source == Source::Given(0);
+            out.as_given =
+                !given.is_empty() && r.pieces.len() == 1 && r.pieces[0].source == Source::Given(0);
             out.pieces = r.pieces;
         }
         Verdict::Invalid { at } => {
@@ -290,7 +307,9 @@ fn certify_one(path: &AnimatedPath, i: usize, format: Format, player: Player, op
         && out.answer == Answer::Certified
     {
         out.answer = Answer::Undecided;
-        out.reason = Some(format!("the keys' straight-line motion is certified, but {why}"));
+        out.reason = Some(format!(
+            "the keys' straight-line motion is certified, but {why}"
+        ));
     }
     out
 }

@@ -309,7 +309,7 @@ impl Alg {
         }
         let width = |lo: f64, hi: f64| {
             if tight {
-                lo.next_up() >= hi
+                next_up(lo) >= hi
             } else {
                 hi - lo <= (lo.abs().max(hi.abs()) * 2f64.powi(-30)).max(f64::MIN_POSITIVE)
             }
@@ -330,6 +330,19 @@ impl Alg {
         }
         (lo, hi)
     }
+}
+
+/// The next double above `x` (`f64::next_up`, for the toolchain this
+/// crate supports).
+pub(crate) fn next_up(x: f64) -> f64 {
+    if x.is_nan() || x == f64::INFINITY {
+        return x;
+    }
+    if x == 0.0 {
+        return f64::from_bits(1);
+    }
+    let bits = x.to_bits();
+    f64::from_bits(if x > 0.0 { bits + 1 } else { bits - 1 })
 }
 
 /// `x` rounded to a double (saturating to ±∞ past the range).
@@ -425,11 +438,17 @@ pub(crate) struct Bad {
 /// vectors, and `k ≥ 0` the margin, fails where `|cross| ≤ k` and
 /// `dot + k > 0`. With `k = 0`: a root of `cross` where `dot > 0`, or
 /// `cross ≡ 0` and `dot > 0` somewhere.
-pub(crate) fn fan_ok(cross: &Quad, dot: &Quad, k: &BigInt, l: &Alg, r: &Alg) -> Result<(), Bad> {
+pub(crate) fn fan_ok(
+    cross: &Quad,
+    dot: &Quad,
+    k: &BigInt,
+    l: &Alg,
+    r: &Alg,
+) -> Result<(), Box<Bad>> {
     let g = dot.plus(k);
     for (a, b) in near_set(cross, k, l, r) {
         if !nonpositive_on(&g, &a, &b) {
-            return Err(first_bad(&g, a, b));
+            return Err(Box::new(first_bad(&g, a, b)));
         }
     }
     Ok(())

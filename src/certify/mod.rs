@@ -185,7 +185,7 @@ impl fmt::Display for SParam {
         match &self.exact {
             Some(_) if self.lo == self.hi => write!(f, "s = {}", self.lo),
             Some(x) => write!(f, "s = {x} ≈ {}", self.lo),
-            None if self.lo.next_up() >= self.hi => write!(f, "s ≈ {}", self.lo),
+            None if exact::next_up(self.lo) >= self.hi => write!(f, "s ≈ {}", self.lo),
             None => write!(f, "s in [{}, {}]", self.lo, self.hi),
         }
     }
@@ -614,7 +614,7 @@ impl Span<'_> {
     }
 
     /// The exact fan test at `v` on the span.
-    fn fan(&self, v: usize, shift: Option<i32>) -> Result<(), exact::Bad> {
+    fn fan(&self, v: usize, shift: Option<i32>) -> Result<(), Box<exact::Bad>> {
         let n = self.p.len();
         let ints = self.ints(&[v, (v + 1) % n, (v + n - 1) % n], shift);
         let (cross, dot, k) = Self::pair(&ints, 0, 1, 2);

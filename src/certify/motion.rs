@@ -136,46 +136,57 @@ pub fn certify_motion(
             };
             return report;
         }
-        // Triangulations valid at the exact shape p(s).
+        // Triangulations valid at the exact shape p(s): the given ones
+        // first; a new one when none is valid, after the first piece, or
+        // when the given ones fail.
         let mut candidates: Vec<(Vec<[u32; 3]>, Source)> = given
             .iter()
             .enumerate()
             .filter(|(_, t)| valid_at_unchecked(start, end, t, s).is_ok())
             .map(|(i, t)| (t.to_vec(), Source::Given(i)))
             .collect();
-        if candidates.is_empty() || !report.pieces.is_empty() {
-            report.triangulations += 1;
-            match triangulate_at(start, end, s) {
-                Ok(t) => candidates.push((t, Source::Triangulated)),
-                Err(Some(())) => {
-                    report.verdict = Verdict::Invalid { at: s };
-                    return report;
-                }
-                Err(None) => {
-                    report.verdict = Verdict::Undecided {
-                        reached: s,
-                        reason: format!(
-                            "{} points is more than the {MAX_EXACT_DP_POINTS} whose self-overlap is decided at a rational s",
-                            start.len()
-                        ),
-                    };
-                    return report;
-                }
-            }
-        }
-        // The candidate that lasts longest.
+        let mut triangulate_now = candidates.is_empty() || !report.pieces.is_empty();
         let mut best: Option<(Vec<[u32; 3]>, Source, Option<Failure>)> = None;
-        for (t, source) in candidates {
-            let Ok(r) = certify_span(start, end, &t, s, 1.0, player) else {
-                continue;
-            };
-            let reach = |f: &Option<Failure>| f.as_ref().map_or(f64::INFINITY, |f| f.at.lo);
-            if best
-                .as_ref()
-                .is_none_or(|b| reach(&r.failure) > reach(&b.2))
-            {
-                best = Some((t, source, r.failure));
+        loop {
+            if triangulate_now {
+                report.triangulations += 1;
+                match triangulate_at(start, end, s) {
+                    Ok(t) => candidates.push((t, Source::Triangulated)),
+                    Err(Some(())) if best.is_none() => {
+                        report.verdict = Verdict::Invalid { at: s };
+                        return report;
+                    }
+                    Err(None) if best.is_none() => {
+                        report.verdict = Verdict::Undecided {
+                            reached: s,
+                            reason: format!(
+                                "{} points is more than the {MAX_EXACT_DP_POINTS} whose self-overlap is decided at a rational s",
+                                start.len()
+                            ),
+                        };
+                        return report;
+                    }
+                    Err(_) => {}
+                }
             }
+            // The candidate that lasts longest.
+            for (t, source) in candidates.drain(..) {
+                let Ok(r) = certify_span(start, end, &t, s, 1.0, player) else {
+                    continue;
+                };
+                let reach = |f: &Option<Failure>| f.as_ref().map_or(f64::INFINITY, |f| f.at.lo);
+                if best
+                    .as_ref()
+                    .is_none_or(|b| reach(&r.failure) > reach(&b.2))
+                {
+                    best = Some((t, source, r.failure));
+                }
+            }
+            let failed = best.as_ref().is_none_or(|b| b.2.is_some());
+            if triangulate_now || !failed {
+                break;
+            }
+            triangulate_now = true;
         }
         let Some((triangles, source, failure)) = best else {
             report.verdict = Verdict::Undecided {
@@ -196,9 +207,20 @@ pub fn certify_motion(
         if report.first_failure.is_none() {
             report.first_failure = Some(failure.clone());
         }
-        // Invalid just after the failure?
-        let after = failure.at.hi;
-        if after <= 1.0 && failure.at.lo > s {
+        // Invalid just after the failure? With a margin, the exact motion
+        // under the same triangulation fails later (or not at all): look
+        // just after that.
+        let after = if player == Player::Exact {
+            Some(failure.at.hi)
+        } else {
+            certify_span(start, end, &triangles, s, 1.0, Player::Exact)
+                .ok()
+                .and_then(|r| r.failure)
+                .map(|f| f.at.hi)
+        };
+        if let Some(after) = after
+            && failure.at.lo > s
+        {
             report.triangulations += 1;
             if let Err(Some(())) = triangulate_at(start, end, after) {
                 report.pieces.push(Piece {
@@ -213,7 +235,7 @@ pub fn certify_motion(
         }
         // Triangulate again a little before the failure.
         let next = s + (failure.at.lo - s) * (15.0 / 16.0);
-        if !(next > s) {
+        if next <= s || next.is_nan() {
             report.verdict = Verdict::Undecided {
                 reached: s,
                 reason: format!("the certificate fails at once: {failure}"),

@@ -144,7 +144,9 @@ pub fn read_animation(bytes: &[u8], label: &str) -> Result<Animation, ReadError>
     };
     if anim.paths.is_empty() {
         let what = match anim.format {
-            Format::Lottie => "no animated path: certify reads the keyframed paths (\"sh\" items with \"a\": 1) of shape layers",
+            Format::Lottie => {
+                "no animated path: certify reads the keyframed paths (\"sh\" items with \"a\": 1) of shape layers"
+            }
             Format::AnimatedSvg => "no <animate attributeName=\"d\"> on a <path>",
             _ => "no frames",
         };
@@ -181,8 +183,8 @@ struct JsonFrame {
 }
 
 fn read_json(bytes: &[u8], label: &str) -> Result<Animation, ReadError> {
-    let value: serde_json::Value = serde_json::from_slice(bytes)
-        .map_err(|e| bad(label, format!("not valid JSON ({e})")))?;
+    let value: serde_json::Value =
+        serde_json::from_slice(bytes).map_err(|e| bad(label, format!("not valid JSON ({e})")))?;
     if value.get("layers").is_some() {
         return read_lottie(&value, label);
     }
@@ -201,7 +203,9 @@ fn read_json(bytes: &[u8], label: &str) -> Result<Animation, ReadError> {
     let frames: Vec<JsonFrame> = serde_json::from_value(list.clone()).map_err(|e| {
         bad(
             label,
-            format!("the frames are not [{{\"t\", \"points\": [[x, y], …], \"triangles\"}}, …] ({e})"),
+            format!(
+                "the frames are not [{{\"t\", \"points\": [[x, y], …], \"triangles\"}}, …] ({e})"
+            ),
         )
     })?;
     let keys: Vec<ReadKey> = frames
@@ -231,8 +235,11 @@ fn read_json(bytes: &[u8], label: &str) -> Result<Animation, ReadError> {
 
 /// A number or the first number of an array (Lottie writes both).
 fn first_number(v: &serde_json::Value) -> Option<f64> {
-    v.as_f64()
-        .or_else(|| v.as_array().and_then(|a| a.first()).and_then(serde_json::Value::as_f64))
+    v.as_f64().or_else(|| {
+        v.as_array()
+            .and_then(|a| a.first())
+            .and_then(serde_json::Value::as_f64)
+    })
 }
 
 /// Every number of a value that is a number or an array of numbers.
@@ -347,7 +354,8 @@ fn read_lottie(root: &serde_json::Value, label: &str) -> Result<Animation, ReadE
                 Some("sh") => {
                     let ks = item.get("ks").unwrap_or(&serde_json::Value::Null);
                     if first_number(ks.get("a").unwrap_or(&serde_json::Value::Null)) != Some(1.0) {
-                        anim.skipped.push(format!("{name}: a static path (no motion)"));
+                        anim.skipped
+                            .push(format!("{name}: a static path (no motion)"));
                         continue;
                     }
                     anim.paths.push(lottie_path(&name, ks, label)?);
@@ -363,7 +371,12 @@ fn lottie_path(name: &str, ks: &serde_json::Value, label: &str) -> Result<Animat
     let frames = ks
         .get("k")
         .and_then(serde_json::Value::as_array)
-        .ok_or_else(|| bad(label, format!("{name}: \"ks\".\"k\" is not a list of keyframes")))?;
+        .ok_or_else(|| {
+            bad(
+                label,
+                format!("{name}: \"ks\".\"k\" is not a list of keyframes"),
+            )
+        })?;
     let mut keys: Vec<ReadKey> = Vec::new();
     let mut play = Vec::new();
     let mut not_covered: Option<String> = None;
@@ -397,7 +410,10 @@ fn lottie_path(name: &str, ks: &serde_json::Value, label: &str) -> Result<Animat
         pending_end = key.get("e");
     }
     if keys.is_empty() {
-        return Err(bad(label, format!("{name}: no keyframe has a shape (\"s\")")));
+        return Err(bad(
+            label,
+            format!("{name}: no keyframe has a shape (\"s\")"),
+        ));
     }
     if let Some(why) = not_covered {
         // Curved or open outlines: nothing of this path is certified.
@@ -437,21 +453,39 @@ fn svg_polygon(d: &str) -> Result<Vec<Point>, String> {
             S::MoveTo { abs, x, y } => {
                 moves += 1;
                 if moves > 1 {
-                    return Err("more than one subpath; certify covers one closed polygon per path".into());
+                    return Err(
+                        "more than one subpath; certify covers one closed polygon per path".into(),
+                    );
                 }
-                let p = if abs { Point::new(x, y) } else { cur + Point::new(x, y) };
+                let p = if abs {
+                    Point::new(x, y)
+                } else {
+                    cur + Point::new(x, y)
+                };
                 start = p;
                 Some(p)
             }
-            S::LineTo { abs, x, y } => Some(if abs { Point::new(x, y) } else { cur + Point::new(x, y) }),
-            S::HorizontalLineTo { abs, x } => Some(Point::new(if abs { x } else { cur.x + x }, cur.y)),
-            S::VerticalLineTo { abs, y } => Some(Point::new(cur.x, if abs { y } else { cur.y + y })),
+            S::LineTo { abs, x, y } => Some(if abs {
+                Point::new(x, y)
+            } else {
+                cur + Point::new(x, y)
+            }),
+            S::HorizontalLineTo { abs, x } => {
+                Some(Point::new(if abs { x } else { cur.x + x }, cur.y))
+            }
+            S::VerticalLineTo { abs, y } => {
+                Some(Point::new(cur.x, if abs { y } else { cur.y + y }))
+            }
             S::ClosePath { .. } => {
                 closed = true;
                 cur = start;
                 None
             }
-            _ => return Err("a curved segment (C, S, Q, T or A): the outline is not a polygon".into()),
+            _ => {
+                return Err(
+                    "a curved segment (C, S, Q, T or A): the outline is not a polygon".into(),
+                );
+            }
         };
         if let Some(p) = next {
             if !(p.x.is_finite() && p.y.is_finite()) {
@@ -489,18 +523,30 @@ fn read_svg(bytes: &[u8], label: &str) -> Result<Animation, ReadError> {
         .enumerate()
     {
         let parent = node.parent_element();
-        let name = parent
-            .and_then(|p| p.attribute("id"))
-            .map_or_else(|| format!("animation {k}"), |id| format!("animation {k} of path '{id}'"));
+        let name = parent.and_then(|p| p.attribute("id")).map_or_else(
+            || format!("animation {k}"),
+            |id| format!("animation {k} of path '{id}'"),
+        );
         if parent.is_none_or(|p| p.tag_name().name() != "path") {
             anim.skipped.push(format!("{name}: not on a <path>"));
             continue;
         }
-        let values: Vec<&str> = match (node.attribute("values"), node.attribute("from"), node.attribute("to")) {
-            (Some(v), _, _) => v.split(';').map(str::trim).filter(|s| !s.is_empty()).collect(),
+        let values: Vec<&str> = match (
+            node.attribute("values"),
+            node.attribute("from"),
+            node.attribute("to"),
+        ) {
+            (Some(v), _, _) => v
+                .split(';')
+                .map(str::trim)
+                .filter(|s| !s.is_empty())
+                .collect(),
             (None, Some(f), Some(t)) => vec![f, t],
             _ => {
-                return Err(bad(label, format!("{name}: no \"values\" (or \"from\" and \"to\")")));
+                return Err(bad(
+                    label,
+                    format!("{name}: no \"values\" (or \"from\" and \"to\")"),
+                ));
             }
         };
         if values.len() < 2 {
@@ -512,7 +558,11 @@ fn read_svg(bytes: &[u8], label: &str) -> Result<Animation, ReadError> {
                     .split(';')
                     .map(str::trim)
                     .filter(|s| !s.is_empty())
-                    .map(|s| s.parse::<f64>().map_err(|_| bad(label, format!("{name}: keyTimes '{s}' is not a number"))))
+                    .map(|s| {
+                        s.parse::<f64>().map_err(|_| {
+                            bad(label, format!("{name}: keyTimes '{s}' is not a number"))
+                        })
+                    })
                     .collect::<Result<_, _>>()?;
                 if t.len() != values.len() {
                     return Err(bad(
@@ -564,7 +614,9 @@ fn read_svg(bytes: &[u8], label: &str) -> Result<Animation, ReadError> {
                     "discrete" => Play::Hold,
                     "spline" => match splines.get(i).map(Vec::as_slice) {
                         Some(&[x1, y1, x2, y2]) if x1 == y1 && x2 == y2 => Play::Linear,
-                        Some(&[_, y1, _, y2]) if (0.0..=1.0).contains(&y1) && (0.0..=1.0).contains(&y2) => {
+                        Some(&[_, y1, _, y2])
+                            if (0.0..=1.0).contains(&y1) && (0.0..=1.0).contains(&y2) =>
+                        {
                             Play::Eased
                         }
                         Some(&[_, _, _, _]) => Play::NotCovered(
@@ -612,8 +664,14 @@ mod tests {
     #[test]
     fn lottie_easing_is_classified() {
         let v = |s: &str| serde_json::from_str::<serde_json::Value>(s).unwrap();
-        assert_eq!(lottie_play(&v(r#"{"i":{"x":1,"y":1},"o":{"x":0,"y":0}}"#)), Play::Linear);
-        assert_eq!(lottie_play(&v(r#"{"i":{"x":[0.58],"y":[1]},"o":{"x":[0.42],"y":[0]}}"#)), Play::Eased);
+        assert_eq!(
+            lottie_play(&v(r#"{"i":{"x":1,"y":1},"o":{"x":0,"y":0}}"#)),
+            Play::Linear
+        );
+        assert_eq!(
+            lottie_play(&v(r#"{"i":{"x":[0.58],"y":[1]},"o":{"x":[0.42],"y":[0]}}"#)),
+            Play::Eased
+        );
         assert!(matches!(
             lottie_play(&v(r#"{"i":{"x":0.3,"y":1.4},"o":{"x":0.4,"y":0}}"#)),
             Play::NotCovered(_)

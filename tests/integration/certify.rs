@@ -363,11 +363,7 @@ fn first_where(polys: &[Poly], cond: impl Fn(&[i32]) -> bool) -> Option<(Q, Q)> 
             None => Some((zero.clone(), zero)),
         };
     }
-    if !prev
-        .as_ref()
-        .is_some_and(|p| p.exact.as_ref() == Some(&one))
-        && cond(&signs_at(&one))
-    {
+    if prev.as_ref().is_none_or(|p| p.exact.as_ref() != Some(&one)) && cond(&signs_at(&one)) {
         return Some((one.clone(), one));
     }
     None
@@ -462,7 +458,10 @@ fn star(r: &mut Rng, n: usize, grid: bool) -> Vec<Point> {
 
 /// A random segment with its triangulation (valid at the start), in one
 /// of several families, many of them near-degenerate.
-fn segment(r: &mut Rng) -> Option<(Vec<Point>, Vec<Point>, Vec<[u32; 3]>)> {
+/// A segment: start, end, triangulation.
+type Segment = (Vec<Point>, Vec<Point>, Vec<[u32; 3]>);
+
+fn segment(r: &mut Rng) -> Option<Segment> {
     let family = r.below(8);
     let n = 3 + r.below(6) as usize;
     let grid = family <= 3;
@@ -642,7 +641,7 @@ fn a_square_turned_half_a_turn_in_one_segment_is_rejected() {
 /// A "pac-man" whose mouth vertex 0 has a fan of about 350°: its first
 /// edge swings early and its last edge late, so the fan passes a full turn
 /// in the middle of the segment, while both ends are valid.
-fn pacman() -> (Vec<Point>, Vec<Point>, Vec<[u32; 3]>) {
+fn pacman() -> Segment {
     let polar = |deg: f64, r: f64| {
         let a = deg.to_radians();
         Point::new(r * a.cos(), r * a.sin())
@@ -677,7 +676,7 @@ fn a_fan_that_wraps_inside_the_segment_is_rejected() {
     assert!(in_bracket(f.at.lo, f.at.hi, &x), "{} vs {:?}", f.at, x);
     // Just before the failure the shape is valid; just after, it is not.
     assert!(valid_at(&p, &qp, &tris, f.at.lo * 0.999).is_ok());
-    assert!(valid_at(&p, &qp, &tris, f.at.hi.next_up()).is_err());
+    assert!(valid_at(&p, &qp, &tris, f64::from_bits(f.at.hi.to_bits() + 1)).is_err());
     // Certified up to the failure.
     let before = certify_span(&p, &qp, &tris, 0.0, f.at.lo * 0.999, Player::Exact).unwrap();
     assert!(before.is_certified(), "{before:?}");

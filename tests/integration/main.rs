@@ -7,6 +7,7 @@
 
 mod catalogue;
 mod certify;
+mod certify_cli;
 mod cli;
 mod curves;
 mod immersion;

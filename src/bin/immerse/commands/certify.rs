@@ -87,9 +87,15 @@ pub(crate) fn run(args: &CertifyArgs) -> anyhow::Result<Outcome> {
             String::new()
         };
         if path.reversed {
-            lines.push(format!("  {prefix}clockwise as given; read in reverse order"));
+            lines.push(format!(
+                "  {prefix}clockwise as given; read in reverse order"
+            ));
         }
-        for seg in path.segments.iter().filter(|s| s.answer != Answer::Certified) {
+        for seg in path
+            .segments
+            .iter()
+            .filter(|s| s.answer != Answer::Certified)
+        {
             if listed == LISTED {
                 unlisted += 1;
                 continue;
@@ -114,17 +120,31 @@ pub(crate) fn run(args: &CertifyArgs) -> anyhow::Result<Outcome> {
 /// One line about a segment that is not certified.
 fn describe(seg: &SegmentOutcome) -> String {
     let at_t = |s: f64| seg.t0 + s * (seg.t1 - seg.t0);
-    let head = format!("segment {} (keys {} → {}, t {} → {})", seg.index, seg.index, seg.index + 1, seg.t0, seg.t1);
+    let head = format!(
+        "segment {} (keys {} → {}, t {} → {})",
+        seg.index,
+        seg.index,
+        seg.index + 1,
+        seg.t0,
+        seg.t1
+    );
     let first = seg
         .failure
         .as_ref()
         .map(|f| format!("; first certificate failure: {}", f.message))
         .unwrap_or_default();
     match (seg.answer, &seg.invalid_at) {
+        (Answer::Invalid, Some(s)) if s.lo == 0.0 && seg.play != "hold" => format!(
+            "{head}: invalid: key {} itself is not self-overlapping",
+            seg.index
+        ),
         (Answer::Invalid, Some(s)) => format!(
             "{head}: invalid: not self-overlapping at {s} (t = {}){}{first}",
             at_t(s.lo),
-            seg.reason.as_deref().map(|r| format!(" ({r})")).unwrap_or_default()
+            seg.reason
+                .as_deref()
+                .map(|r| format!(" ({r})"))
+                .unwrap_or_default()
         ),
         _ => format!(
             "{head}: undecided: {}{}{first}",
@@ -145,7 +165,10 @@ fn read_bounded(path: &std::path::Path) -> anyhow::Result<Vec<u8>> {
     }
     let limit = MAX_ANIMATION_BYTES as u64;
     if meta.len() > limit {
-        anyhow::bail!("too large ({} bytes; the limit is {limit} bytes)", meta.len());
+        anyhow::bail!(
+            "too large ({} bytes; the limit is {limit} bytes)",
+            meta.len()
+        );
     }
     let mut bytes = Vec::new();
     std::fs::File::open(path)?

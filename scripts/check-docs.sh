@@ -44,6 +44,7 @@ skip=(
   'cargo test --release|the whole test suite takes several minutes on 2 cores; CI runs it'
   'cargo bench*|criterion benchmarks take minutes; see benches/README.md'
   'scripts/bench-table.sh*|runs every benchmark (several minutes); its output is docs/benchmarks.md'
+  'scripts/certify-pairs.sh*|morphs and certifies the 22 motion pairs (about a minute with the build); its totals are in docs/design.md §13.3'
   'scripts/peer-compare.sh*|needs node, npm and the npm registry (installs flubber into a temporary folder)'
   'cargo run --release --example make_pairs*|rewrites curves/pairs/ in the repository itself (the example writes under CARGO_MANIFEST_DIR)'
   'cargo run --release --example peer_check*|needs the flubber frames that scripts/peer-compare.sh makes (node, npm)'

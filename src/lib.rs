@@ -18,6 +18,11 @@
 //!
 //! Every stage uses [`geom`] for positions and exact predicates.
 //!
+//! Between frames, players move every vertex on a straight line;
+//! [`certify`] decides exactly whether such a segment stays an immersed
+//! disk for every s (docs/design.md §13), with margins for players that
+//! interpolate in `f64` or `f32`.
+//!
 //! ## Features
 //!
 //! - `cli` (default): the `immerse` command-line tool and its rendering,
@@ -59,6 +64,7 @@
 //! ```
 #![deny(rustdoc::broken_intra_doc_links)]
 
+pub mod certify;
 pub mod coords;
 pub mod correspond;
 pub mod curve;

@@ -96,7 +96,14 @@ pub enum ImmersionDefect {
 ///
 /// The first [`ImmersionDefect`], in the order of the variants.
 pub fn check(points: &[Point], triangles: &[[u32; 3]]) -> Result<(), ImmersionDefect> {
-    let n = points.len();
+    check_structure(points.len(), triangles)?;
+    check_triangles(points, triangles)
+}
+
+/// The combinatorial half of [`check`]: `triangles` is a triangulation of
+/// the n-gon by diagonals (counts, index order, edge multiplicities, no
+/// crossing diagonals), whatever the positions. O(n).
+pub(crate) fn check_structure(n: usize, triangles: &[[u32; 3]]) -> Result<(), ImmersionDefect> {
     if n < 3 {
         return Err(ImmersionDefect::TooFewPoints(n));
     }
@@ -185,7 +192,7 @@ pub fn check(points: &[Point], triangles: &[[u32; 3]]) -> Result<(), ImmersionDe
         }
         open.push(d);
     }
-    check_triangles(points, triangles)
+    Ok(())
 }
 
 /// `pairs` stably sorted by `key`, whose values are below `n`: a counting

@@ -36,6 +36,7 @@ mod check;
 pub(crate) mod dp;
 pub(crate) mod valid;
 
+pub(crate) use check::check_structure;
 pub use check::{ImmersionDefect, check, check_triangles};
 pub use valid::is_valid_triangle;
 

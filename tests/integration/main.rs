@@ -6,6 +6,8 @@
 )]
 
 mod catalogue;
+mod certify;
+mod certify_cli;
 mod cli;
 mod curves;
 mod immersion;

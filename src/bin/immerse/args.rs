@@ -96,6 +96,68 @@ pub(crate) enum Command {
         after_help = "Examples:\n  immerse serve\n  immerse serve --port 0 --open\n  immerse serve --port 8080 --max-jobs 4"
     )]
     Serve(ServeArgs),
+    /// Certify that an animation stays an immersed disk at every moment, not only at its keys.
+    ///
+    /// Players (Lottie, SVG, CSS, game engines) move every vertex on a
+    /// straight line between stored shapes. certify decides exactly
+    /// whether each such segment stays the boundary of an immersed disk
+    /// for every s in [0, 1]: every triangle keeps a positive area and no
+    /// vertex fan reaches a full turn (docs/design.md §13).
+    ///
+    /// Reads immerse's morph/animate JSON (its "keyframes", else its
+    /// "frames"; their triangulations are tried first), a Lottie file (the
+    /// keyframed paths of its shape layers) or an animated SVG (a path's
+    /// <animate attributeName="d" values=...>). Where a file has no
+    /// triangulation, or the one given fails, certify triangulates where a
+    /// piece starts, certifies as far as that holds and triangulates again.
+    ///
+    /// Answers per segment: certified; invalid (the shape is not
+    /// self-overlapping at an exact s, with where); or undecided (neither
+    /// within --max-pieces triangulations, or a motion certify does not
+    /// cover: curved outlines, easing that overshoots its keys). Exit code
+    /// 0 when every segment is certified, 1 otherwise (the message and the
+    /// JSON say invalid or undecided, where and why), 2 for bad input.
+    #[command(
+        after_help = "Examples:\n  immerse morph a.json b.json --frames 40 --json m.json && immerse certify m.json\n  immerse certify morph.lottie.json --player f32\n  immerse certify morph.svg --json=report.json\n\nPlayers: exact certifies the coordinates as written; f64 and f32 add the margin\nthat a player interpolating in that precision needs (per coordinate 8 u |x|,\nu its unit roundoff; f32 for native Lottie players)."
+    )]
+    Certify(CertifyArgs),
+}
+
+/// The arithmetic a player interpolates with (the certificate's margin).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum PlayerArg {
+    /// The coordinates as written, interpolated exactly: no margin.
+    Exact,
+    /// Interpolation in double precision (browsers' SVG and CSS).
+    F64,
+    /// Interpolation in single precision (native Lottie players, GPUs).
+    F32,
+}
+
+/// Arguments of `immerse certify`.
+#[derive(Debug, Args)]
+pub(crate) struct CertifyArgs {
+    /// The animation: immerse's JSON, a Lottie file, or an animated SVG.
+    pub(crate) file: PathBuf,
+    /// Certify against this player's arithmetic.
+    #[arg(long, value_enum, default_value = "exact")]
+    pub(crate) player: PlayerArg,
+    /// Most triangulations per segment before it is undecided.
+    #[arg(long, default_value_t = 24, value_parser = clap::value_parser!(u32).range(1..=10_000))]
+    pub(crate) max_pieces: u32,
+    /// Write one JSON object instead of text: bare --json prints it on
+    /// stdout, --json=FILE writes FILE ("-" or /dev/stdout: stdout).
+    ///
+    /// Fields: file, format, player, answer (certified, invalid,
+    /// undecided), segments, certified, certified_as_given, invalid,
+    /// undecided, paths (each with its segments: index, t0, t1, play,
+    /// answer, as_given, pieces, failure, invalid_at, certified_up_to,
+    /// reason), skipped.
+    #[arg(long, value_name = "FILE", num_args = 0..=1, require_equals = true, default_missing_value = "-")]
+    pub(crate) json: Option<PathBuf>,
+    /// Replace an existing --json file.
+    #[arg(long)]
+    pub(crate) force: bool,
 }
 
 /// Which shapes of one SVG drawing are the keys.

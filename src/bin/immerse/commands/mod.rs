@@ -2,6 +2,7 @@
 //! options, runs, and reports. Shared glue lives here.
 
 mod animate;
+mod certify;
 mod check;
 mod demo;
 mod mesh_morph;
@@ -27,6 +28,7 @@ pub(crate) fn run(cli: Cli) -> anyhow::Result<Outcome> {
         Command::MeshMorph(args) => mesh_morph::run(&args),
         Command::Animate(args) => animate::run(&args),
         Command::Serve(args) => serve::run(&args),
+        Command::Certify(args) => certify::run(&args),
     }
 }
 

@@ -1,0 +1,856 @@
+//! The segment certificate (`immerse::certify`, docs/design.md §13) against
+//! an independent exact checker written here.
+//!
+//! The checker shares no code or method with the certificate. It decides
+//! validity of the motion from the static definition of an immersion
+//! triangulation (docs/design.md §3: each triangle counter-clockwise, and
+//! at each corner v with (u, w) after it not "u strictly right of the
+//! edge v → v+1 while w is not"; no corner on a zero-length edge),
+//! required at every s in [0, 1]. Every predicate is a polynomial in s of
+//! degree ≤ 2, interpolated exactly from its values at s = 0, ½, 1 in
+//! rational arithmetic (`num-rational`); the set of s where a triangle's
+//! condition fails is found by isolating the roots of its one or two
+//! polynomials with Sturm sequences and bisection on rationals, ordering
+//! them, and testing the condition at each root (signs at a root by gcd
+//! and refinement) and at a rational point between consecutive roots.
+//! The fan angle is thus tracked through the fan-order predicates of every
+//! triangle, not through the alignment of the fan's two edges that the
+//! certificate uses.
+
+use immerse::Point;
+use immerse::certify::{
+    Defect, Key, Player, certify_keys, certify_segment, certify_span, valid_at,
+};
+use immerse::immersion::{check, triangulate};
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use proptest::prelude::*;
+
+type Q = BigRational;
+
+fn q(x: f64) -> Q {
+    Q::from_float(x).expect("finite")
+}
+
+fn qi(n: i64) -> Q {
+    Q::from_integer(BigInt::from(n))
+}
+
+fn sign(x: &Q) -> i32 {
+    match x.numer().sign() {
+        num_bigint::Sign::Minus => -1,
+        num_bigint::Sign::NoSign => 0,
+        num_bigint::Sign::Plus => 1,
+    }
+}
+
+/// A polynomial, coefficients from degree 0 up, no trailing zeros.
+#[derive(Clone, Debug, PartialEq)]
+struct Poly(Vec<Q>);
+
+impl Poly {
+    fn new(mut c: Vec<Q>) -> Poly {
+        while c.last().is_some_and(|x| sign(x) == 0) {
+            c.pop();
+        }
+        Poly(c)
+    }
+
+    fn is_zero(&self) -> bool {
+        self.0.is_empty()
+    }
+
+    fn degree(&self) -> usize {
+        self.0.len().saturating_sub(1)
+    }
+
+    fn eval(&self, x: &Q) -> Q {
+        self.0.iter().rev().fold(qi(0), |acc, c| acc * x + c)
+    }
+
+    fn derivative(&self) -> Poly {
+        Poly::new(
+            self.0
+                .iter()
+                .enumerate()
+                .skip(1)
+                .map(|(i, c)| c * qi(i as i64))
+                .collect(),
+        )
+    }
+
+    /// Remainder of the division by `d` (not zero).
+    fn rem(&self, d: &Poly) -> Poly {
+        let mut r = self.0.clone();
+        let lead = d.0.last().expect("nonzero divisor").clone();
+        while r.len() >= d.0.len() && !r.is_empty() {
+            let k = r.len() - d.0.len();
+            let f = r.last().expect("nonempty") / &lead;
+            for (i, c) in d.0.iter().enumerate() {
+                r[k + i] = &r[k + i] - &f * c;
+            }
+            r.pop();
+            while r.last().is_some_and(|x| sign(x) == 0) {
+                r.pop();
+            }
+        }
+        Poly::new(r)
+    }
+
+    fn neg(&self) -> Poly {
+        Poly(self.0.iter().map(|c| -c).collect())
+    }
+
+    /// Quotient of the division by `d` (not zero).
+    fn div(&self, d: &Poly) -> Poly {
+        let mut r = self.0.clone();
+        let lead = d.0.last().expect("nonzero divisor").clone();
+        let mut quot = vec![qi(0); (r.len() + 1).saturating_sub(d.0.len())];
+        while r.len() >= d.0.len() && !r.is_empty() {
+            let k = r.len() - d.0.len();
+            let f = r.last().expect("nonempty") / &lead;
+            for (i, c) in d.0.iter().enumerate() {
+                r[k + i] = &r[k + i] - &f * c;
+            }
+            quot[k] = f;
+            r.pop();
+        }
+        Poly::new(quot)
+    }
+
+    /// The polynomial with the same roots, each simple.
+    fn squarefree(&self) -> Poly {
+        let g = self.gcd(&self.derivative());
+        if g.degree() == 0 {
+            self.clone()
+        } else {
+            self.div(&g)
+        }
+    }
+
+    fn gcd(&self, other: &Poly) -> Poly {
+        let (mut a, mut b) = (self.clone(), other.clone());
+        while !b.is_zero() {
+            let r = a.rem(&b);
+            a = b;
+            b = r;
+        }
+        a
+    }
+
+    /// Sturm sequence.
+    fn sturm(&self) -> Vec<Poly> {
+        let mut seq = vec![self.clone(), self.derivative()];
+        while !seq[seq.len() - 1].is_zero() {
+            let n = seq.len();
+            let r = seq[n - 2].rem(&seq[n - 1]).neg();
+            seq.push(r);
+        }
+        seq.pop();
+        seq
+    }
+
+    /// Distinct roots in (a, b].
+    fn count(&self, a: &Q, b: &Q) -> usize {
+        if self.is_zero() || self.degree() == 0 {
+            return 0;
+        }
+        let seq = self.sturm();
+        let var = |x: &Q| {
+            let signs: Vec<i32> = seq
+                .iter()
+                .map(|p| sign(&p.eval(x)))
+                .filter(|&s| s != 0)
+                .collect();
+            signs.windows(2).filter(|w| w[0] != w[1]).count()
+        };
+        var(a) - var(b)
+    }
+}
+
+/// The polynomial of degree ≤ 2 through (0, v0), (½, vh), (1, v1).
+fn interpolate(v0: Q, vh: Q, v1: Q) -> Poly {
+    // v(s) = v0 (2s − 1)(s − 1) − 4 vh s(s − 1) + v1 s(2s − 1).
+    let c0 = v0.clone();
+    let c1 = -qi(3) * &v0 + qi(4) * &vh - &v1;
+    let c2 = qi(2) * &v0 - qi(4) * &vh + qi(2) * &v1;
+    Poly::new(vec![c0, c1, c2])
+}
+
+/// A root of a polynomial in [0, 1]: exact, or alone in the open interval
+/// (lo, hi) with p(lo), p(hi) ≠ 0.
+#[derive(Clone, Debug)]
+struct Root {
+    p: Poly,
+    lo: Q,
+    hi: Q,
+    exact: Option<Q>,
+}
+
+impl Root {
+    fn refine(&mut self) {
+        if self.exact.is_some() {
+            return;
+        }
+        let mid = (&self.lo + &self.hi) / qi(2);
+        if sign(&self.p.eval(&mid)) == 0 {
+            self.exact = Some(mid.clone());
+            self.lo = mid.clone();
+            self.hi = mid;
+        } else if self.p.count(&self.lo, &mid) == 1 {
+            self.hi = mid;
+        } else {
+            self.lo = mid;
+        }
+    }
+
+    fn low(&self) -> &Q {
+        self.exact.as_ref().unwrap_or(&self.lo)
+    }
+
+    fn high(&self) -> &Q {
+        self.exact.as_ref().unwrap_or(&self.hi)
+    }
+
+    /// The sign of `h` at the root.
+    fn sign_of(&mut self, h: &Poly) -> i32 {
+        if let Some(x) = &self.exact {
+            return sign(&h.eval(x));
+        }
+        if h.is_zero() {
+            return 0;
+        }
+        let g = self.p.gcd(h);
+        if g.degree() > 0 && g.count(&self.lo, &self.hi) > 0 {
+            return 0;
+        }
+        while h.count(&self.lo, &self.hi) > 0 || sign(&h.eval(&self.hi)) == 0 {
+            self.refine();
+            if let Some(x) = &self.exact {
+                return sign(&h.eval(x));
+            }
+        }
+        sign(&h.eval(&self.hi))
+    }
+
+    fn same_as(&self, other: &Root) -> bool {
+        match (&self.exact, &other.exact) {
+            (Some(a), Some(b)) => a == b,
+            (Some(a), None) => sign(&other.p.eval(a)) == 0 && other.lo < *a && *a < other.hi,
+            (None, Some(b)) => sign(&self.p.eval(b)) == 0 && self.lo < *b && *b < self.hi,
+            (None, None) => {
+                let lo = std::cmp::max(&self.lo, &other.lo).clone();
+                let hi = std::cmp::min(&self.hi, &other.hi).clone();
+                let g = self.p.gcd(&other.p);
+                lo < hi && g.degree() > 0 && g.count(&lo, &hi) > 0
+            }
+        }
+    }
+}
+
+/// The roots of `p` in [0, 1].
+fn roots(p: &Poly) -> Vec<Root> {
+    if p.is_zero() || p.degree() == 0 {
+        return Vec::new();
+    }
+    let p = &p.squarefree();
+    let (zero, one) = (qi(0), qi(1));
+    let exact = |x: Q| Root {
+        p: p.clone(),
+        lo: x.clone(),
+        hi: x.clone(),
+        exact: Some(x),
+    };
+    let mut out = Vec::new();
+    if sign(&p.eval(&zero)) == 0 {
+        out.push(exact(zero.clone()));
+    }
+    let mut stack = vec![(zero, one.clone())];
+    while let Some((a, b)) = stack.pop() {
+        // Roots in (a, b), b excluded unless b = 1.
+        let mut c = p.count(&a, &b);
+        if sign(&p.eval(&b)) == 0 {
+            if b == one {
+                out.push(exact(b.clone()));
+            }
+            c -= 1;
+        }
+        if c == 0 {
+            continue;
+        }
+        if c == 1 && sign(&p.eval(&b)) != 0 {
+            out.push(Root {
+                p: p.clone(),
+                lo: a,
+                hi: b,
+                exact: None,
+            });
+            continue;
+        }
+        let mid = (&a + &b) / qi(2);
+        if sign(&p.eval(&mid)) == 0 {
+            out.push(exact(mid.clone()));
+        }
+        stack.push((a, mid.clone()));
+        stack.push((mid, b));
+    }
+    out
+}
+
+/// The infimum of the s in [0, 1] where `cond(signs of polys at s)` holds,
+/// as a rational interval (a point when exact), or `None`.
+fn first_where(polys: &[Poly], cond: impl Fn(&[i32]) -> bool) -> Option<(Q, Q)> {
+    let mut all: Vec<Root> = Vec::new();
+    for p in polys {
+        for r in roots(p) {
+            if !all.iter().any(|x| x.same_as(&r)) {
+                all.push(r);
+            }
+        }
+    }
+    // Separate distinct roots, then order them.
+    loop {
+        let mut overlapping = false;
+        for i in 0..all.len() {
+            for j in i + 1..all.len() {
+                let (a, b) = (&all[i], &all[j]);
+                if a.low() <= b.high() && b.low() <= a.high() {
+                    overlapping = true;
+                    all[i].refine();
+                    all[j].refine();
+                }
+            }
+        }
+        if !overlapping {
+            break;
+        }
+    }
+    all.sort_by(|a, b| a.low().cmp(b.low()));
+    let signs_at = |x: &Q| polys.iter().map(|p| sign(&p.eval(x))).collect::<Vec<_>>();
+    // The infimum is a root: narrow it for the caller.
+    let at_root = |mut r: Root| {
+        let eps = Q::new(BigInt::from(1), BigInt::from(1) << 64);
+        while r.exact.is_none() && &r.hi - &r.lo > eps {
+            r.refine();
+        }
+        Some((r.low().clone(), r.high().clone()))
+    };
+    let (zero, one) = (qi(0), qi(1));
+    let is_root = |x: &Q, all: &[Root]| all.iter().any(|r| r.exact.as_ref() == Some(x));
+    if !is_root(&zero, &all) && cond(&signs_at(&zero)) {
+        return Some((zero.clone(), zero));
+    }
+    let mut prev: Option<Root> = None;
+    for mut r in all {
+        // The open interval before this root.
+        let from = prev.as_ref().map_or(zero.clone(), |p| p.high().clone());
+        if *r.low() > from && cond(&signs_at(&((&from + r.low()) / qi(2)))) {
+            return match prev {
+                Some(p) => at_root(p),
+                None => Some((zero.clone(), zero)),
+            };
+        }
+        let signs: Vec<i32> = polys.iter().map(|p| r.sign_of(p)).collect();
+        if cond(&signs) {
+            return at_root(r);
+        }
+        prev = Some(r);
+    }
+    let from = prev.as_ref().map_or(zero.clone(), |p| p.high().clone());
+    if from < one && cond(&signs_at(&((&from + &one) / qi(2)))) {
+        return match prev {
+            Some(p) => at_root(p),
+            None => Some((zero.clone(), zero)),
+        };
+    }
+    if prev.as_ref().is_none_or(|p| p.exact.as_ref() != Some(&one)) && cond(&signs_at(&one)) {
+        return Some((one.clone(), one));
+    }
+    None
+}
+
+/// The independent checker: the first s in [0, 1] where the fixed
+/// triangulation is not an immersion triangulation of p(s), or `None`.
+fn checker(p: &[Point], qp: &[Point], tris: &[[u32; 3]]) -> Option<(Q, Q)> {
+    let n = p.len();
+    let half = qi(1) / qi(2);
+    let at = |v: usize, s: &Q| -> (Q, Q) {
+        let (x0, y0, x1, y1) = (q(p[v].x), q(p[v].y), q(qp[v].x), q(qp[v].y));
+        (&x0 + s * (x1 - &x0), &y0 + s * (y1 - &y0))
+    };
+    let orient = |a: usize, b: usize, c: usize| -> Poly {
+        let val = |s: &Q| {
+            let (pa, pb, pc) = (at(a, s), at(b, s), at(c, s));
+            (&pb.0 - &pa.0) * (&pc.1 - &pa.1) - (&pb.1 - &pa.1) * (&pc.0 - &pa.0)
+        };
+        interpolate(val(&qi(0)), val(&half), val(&qi(1)))
+    };
+    let coord = |v: usize, axis: usize| -> Poly {
+        let val = |s: &Q| {
+            let (pw, pv) = (at((v + 1) % n, s), at(v, s));
+            if axis == 0 { pw.0 - pv.0 } else { pw.1 - pv.1 }
+        };
+        interpolate(val(&qi(0)), val(&half), val(&qi(1)))
+    };
+    let mut first: Option<(Q, Q)> = None;
+    let mut note = |x: Option<(Q, Q)>| {
+        if let Some(x) = x {
+            if first.as_ref().is_none_or(|f| x.0 < f.0) {
+                first = Some(x);
+            }
+        }
+    };
+    for &[a, b, c] in tris {
+        let (a, b, c) = (a as usize, b as usize, c as usize);
+        note(first_where(&[orient(a, b, c)], |s| s[0] <= 0));
+        for (v, u, w) in [(a, b, c), (b, c, a), (c, a, b)] {
+            let next = (v + 1) % n;
+            note(first_where(
+                &[orient(v, next, u), orient(v, next, w)],
+                |s| s[0] < 0 && s[1] >= 0,
+            ));
+            note(first_where(&[coord(v, 0), coord(v, 1)], |s| {
+                s[0] == 0 && s[1] == 0
+            }));
+        }
+    }
+    first
+}
+
+/// A small deterministic generator.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+
+    fn unit(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn below(&mut self, k: u64) -> u64 {
+        self.next() % k
+    }
+}
+
+/// A star-shaped polygon: on a small grid (exact degeneracies) or in
+/// floating point.
+fn star(r: &mut Rng, n: usize, grid: bool) -> Vec<Point> {
+    let mut angles: Vec<f64> = (0..n).map(|_| r.unit() * std::f64::consts::TAU).collect();
+    angles.sort_by(f64::total_cmp);
+    angles
+        .iter()
+        .map(|&a| {
+            let rad = 1.0 + 2.0 * r.unit();
+            let (x, y) = (rad * a.cos(), rad * a.sin());
+            if grid {
+                Point::new((x * 2.0).round(), (y * 2.0).round())
+            } else {
+                Point::new(x, y)
+            }
+        })
+        .collect()
+}
+
+/// A random segment with its triangulation (valid at the start), in one
+/// of several families, many of them near-degenerate.
+/// A segment: start, end, triangulation.
+type Segment = (Vec<Point>, Vec<Point>, Vec<[u32; 3]>);
+
+fn segment(r: &mut Rng) -> Option<Segment> {
+    let family = r.below(8);
+    let n = 3 + r.below(6) as usize;
+    let grid = family <= 3;
+    let mut p = star(r, n, grid);
+    if family == 3 {
+        // Insert the midpoint of some edges: collinear neighbours that
+        // stay collinear when the end moves the same way.
+        let mut out = Vec::new();
+        for i in 0..p.len() {
+            out.push(p[i]);
+            if r.below(2) == 0 {
+                out.push((p[i] + p[(i + 1) % p.len()]) * 0.5);
+            }
+        }
+        p = out;
+    }
+    let imm = triangulate(&p).ok()?;
+    let tris = imm.triangles;
+    let qp: Vec<Point> = match family {
+        // Grid moves: exact roots, double roots, roots at 0 and 1.
+        0..=2 => p
+            .iter()
+            .map(|a| *a + Point::new(r.below(5) as f64 - 2.0, r.below(5) as f64 - 2.0))
+            .collect(),
+        3 => {
+            let mut qp: Vec<Point> = p
+                .iter()
+                .map(|a| *a + Point::new(r.below(3) as f64 - 1.0, r.below(3) as f64 - 1.0))
+                .collect();
+            // Keep inserted midpoints midpoints at the end too.
+            for i in 0..qp.len() {
+                let (prev, next) = (qp[(i + qp.len() - 1) % qp.len()], qp[(i + 1) % qp.len()]);
+                let pi = p[i];
+                let (pp, pn) = (p[(i + p.len() - 1) % p.len()], p[(i + 1) % p.len()]);
+                if (pp + pn) * 0.5 == pi && r.below(2) == 0 {
+                    qp[i] = (prev + next) * 0.5;
+                }
+            }
+            qp
+        }
+        // A rotation about the centroid: valid below a half turn.
+        4 => {
+            let c = p.iter().copied().sum::<Point>() / p.len() as f64;
+            let t = r.unit() * 4.0;
+            let (s, co) = t.sin_cos();
+            p.iter()
+                .map(|a| {
+                    let d = *a - c;
+                    c + Point::new(co * d.x - s * d.y, s * d.x + co * d.y)
+                })
+                .collect()
+        }
+        // Small floating-point moves.
+        5 => p
+            .iter()
+            .map(|a| *a + Point::new(r.unit() - 0.5, r.unit() - 0.5) * 0.6)
+            .collect(),
+        // Moves by a few ulps from a shape whose vertex sits on a line.
+        6 => {
+            let mut qp = p.clone();
+            let k = r.below(n as u64) as usize;
+            let (a, b) = (p[(k + n - 1) % n], p[(k + 1) % n]);
+            let t = r.unit();
+            let on = a + (b - a) * t;
+            qp[k] = Point::new(
+                f64::from_bits(on.x.to_bits().wrapping_add(r.below(5))),
+                f64::from_bits(on.y.to_bits().wrapping_add(r.below(5))),
+            );
+            qp
+        }
+        // Large moves: mostly failures.
+        _ => p
+            .iter()
+            .map(|a| *a + Point::new(r.unit() - 0.5, r.unit() - 0.5) * 4.0)
+            .collect(),
+    };
+    Some((p, qp, tris))
+}
+
+fn in_bracket(lo: f64, hi: f64, x: &(Q, Q)) -> bool {
+    // The checker's point (or a tiny interval holding it) meets [lo, hi].
+    x.0 <= q(hi) && q(lo) <= x.1
+}
+
+#[test]
+fn the_certificate_agrees_with_the_independent_checker() {
+    let mut r = Rng(0x9e37_79b9_7f4a_7c15);
+    let (mut certified, mut rejected, mut exact_used) = (0, 0, 0);
+    let mut families_failed_inside = 0;
+    // Fewer in the debug profile, where big rationals are slow.
+    let rounds = if cfg!(debug_assertions) { 300 } else { 1500 };
+    for _ in 0..rounds {
+        let Some((p, qp, tris)) = segment(&mut r) else {
+            continue;
+        };
+        let report = certify_segment(&p, &qp, &tris, Player::Exact).unwrap();
+        exact_used += report.exact_triangles + report.exact_fans;
+        let expect = checker(&p, &qp, &tris);
+        match (&report.failure, &expect) {
+            (None, None) => certified += 1,
+            (Some(f), Some(x)) => {
+                rejected += 1;
+                assert!(
+                    in_bracket(f.at.lo, f.at.hi, x),
+                    "failure at {} but the checker finds the first invalid s in [{}, {}]\n{p:?}\n{qp:?}\n{tris:?}",
+                    f.at,
+                    x.0,
+                    x.1
+                );
+                if f.at.lo > 0.0 && f.at.hi < 1.0 {
+                    families_failed_inside += 1;
+                }
+                if let Some(e) = &f.at.exact {
+                    let (num, den) = e.split_once('/').unwrap_or((e, "1"));
+                    let v = Q::new(num.parse().unwrap(), den.parse().unwrap());
+                    assert!(
+                        x.0 <= v && v <= x.1,
+                        "exact failure {e} outside [{}, {}]",
+                        x.0,
+                        x.1
+                    );
+                }
+            }
+            (got, want) => {
+                panic!("certificate {got:?} but checker {want:?}\n{p:?}\n{qp:?}\n{tris:?}")
+            }
+        }
+    }
+    assert!(
+        certified > 200 && rejected > 200,
+        "{certified} certified, {rejected} rejected"
+    );
+    assert!(families_failed_inside > 50, "{families_failed_inside}");
+    assert!(exact_used > 100, "the exact path ran {exact_used} times");
+}
+
+fn square() -> Vec<Point> {
+    vec![
+        Point::new(0.0, 0.0),
+        Point::new(1.0, 0.0),
+        Point::new(1.0, 1.0),
+        Point::new(0.0, 1.0),
+    ]
+}
+
+#[test]
+fn a_square_turned_half_a_turn_in_one_segment_is_rejected() {
+    let p = square();
+    let qp: Vec<Point> = p.iter().map(|a| Point::new(1.0, 1.0) - *a).collect();
+    let tris = [[0, 1, 2], [0, 2, 3]];
+    assert!(check(&qp, &tris).is_ok(), "both ends are valid");
+    for player in Player::ALL {
+        let report = certify_segment(&p, &qp, &tris, player).unwrap();
+        let f = report.failure.expect("rejected");
+        assert!(matches!(f.defect, Defect::Triangle { .. }), "{f:?}");
+        if player == Player::Exact {
+            assert!(f.at.lo <= 0.5 && 0.5 <= f.at.hi, "{}", f.at);
+            assert_eq!(f.at.exact.as_deref(), Some("1/2"));
+            assert!(!f.within_margin);
+        } else {
+            // The margin fails a little earlier than the exact motion.
+            assert!(f.at.hi <= 0.5 && f.at.lo > 0.49, "{player}: {}", f.at);
+        }
+        assert_eq!(report.failing_triangles, 2);
+    }
+    assert!(checker(&p, &qp, &tris).is_some());
+    // A quarter turn is fine (the straight-line motion of a rotation by
+    // less than a half turn is a similarity at every s).
+    let quarter: Vec<Point> = p.iter().map(|a| Point::new(1.0 - a.y, a.x)).collect();
+    for player in Player::ALL {
+        assert!(
+            certify_segment(&p, &quarter, &tris, player)
+                .unwrap()
+                .is_certified()
+        );
+    }
+}
+
+/// A "pac-man" whose mouth vertex 0 has a fan of about 350°: its first
+/// edge swings early and its last edge late, so the fan passes a full turn
+/// in the middle of the segment, while both ends are valid.
+fn pacman() -> Segment {
+    let polar = |deg: f64, r: f64| {
+        let a = deg.to_radians();
+        Point::new(r * a.cos(), r * a.sin())
+    };
+    let mut p = vec![Point::ZERO, polar(0.0, 0.1)];
+    for k in 0..8 {
+        p.push(polar(20.0 + 40.0 * k as f64, 1.0));
+    }
+    p.push(polar(350.0, 2.0));
+    let mut qp = p.clone();
+    qp[1] = polar(-30.0, 2.0);
+    let last = qp.len() - 1;
+    qp[last] = polar(320.0, 0.1);
+    let n = p.len() as u32;
+    let tris: Vec<[u32; 3]> = (1..n - 1).map(|k| [0, k, k + 1]).collect();
+    (p, qp, tris)
+}
+
+#[test]
+fn a_fan_that_wraps_inside_the_segment_is_rejected() {
+    let (p, qp, tris) = pacman();
+    assert!(
+        check(&p, &tris).is_ok() && check(&qp, &tris).is_ok(),
+        "both ends are valid"
+    );
+    let report = certify_segment(&p, &qp, &tris, Player::Exact).unwrap();
+    let f = report.failure.expect("rejected");
+    assert_eq!(f.defect, Defect::Fan { vertex: 0 }, "{f}");
+    assert!(f.at.lo > 0.0 && f.at.hi < 1.0, "{}", f.at);
+    assert_eq!(report.failing_triangles, 0);
+    let x = checker(&p, &qp, &tris).expect("the checker rejects it too");
+    assert!(in_bracket(f.at.lo, f.at.hi, &x), "{} vs {:?}", f.at, x);
+    // Just before the failure the shape is valid; just after, it is not.
+    assert!(valid_at(&p, &qp, &tris, f.at.lo * 0.999).is_ok());
+    assert!(valid_at(&p, &qp, &tris, f64::from_bits(f.at.hi.to_bits() + 1)).is_err());
+    // Certified up to the failure.
+    let before = certify_span(&p, &qp, &tris, 0.0, f.at.lo * 0.999, Player::Exact).unwrap();
+    assert!(before.is_certified(), "{before:?}");
+}
+
+#[test]
+fn collinear_neighbours_are_decided_exactly() {
+    // Vertex 1 is the midpoint of 0–2 at both ends: cross(a, b) ≡ 0 and
+    // the fan at 1 is exactly π while dot(a, b) < 0.
+    let p = vec![
+        Point::new(0.0, 0.0),
+        Point::new(1.0, 0.0),
+        Point::new(2.0, 0.0),
+        Point::new(1.0, 1.0),
+    ];
+    let mut qp = p.clone();
+    qp[2] = Point::new(4.0, 2.0);
+    qp[1] = Point::new(2.0, 1.0);
+    let tris = [[0, 1, 3], [1, 2, 3]];
+    for player in Player::ALL {
+        let report = certify_segment(&p, &qp, &tris, player).unwrap();
+        assert!(report.is_certified(), "{player}: {:?}", report.failure);
+    }
+    assert!(checker(&p, &qp, &tris).is_none());
+}
+
+#[test]
+fn key_lists_take_each_segment_under_its_first_key() {
+    let p = square();
+    let quarter: Vec<Point> = p.iter().map(|a| Point::new(1.0 - a.y, a.x)).collect();
+    let half: Vec<Point> = quarter.iter().map(|a| Point::new(1.0 - a.y, a.x)).collect();
+    let t1 = [[0, 1, 2], [0, 2, 3]];
+    let t2 = [[0, 1, 3], [1, 2, 3]];
+    // Two quarter turns, with a flip key in the middle: certified.
+    let keys = [
+        Key {
+            t: 0.0,
+            points: &p,
+            triangles: &t1,
+        },
+        Key {
+            t: 0.5,
+            points: &quarter,
+            triangles: &t2,
+        },
+        Key {
+            t: 1.0,
+            points: &half,
+            triangles: &t2,
+        },
+    ];
+    let report = certify_keys(&keys, Player::F32).unwrap();
+    assert!(report.is_certified(), "{report:?}");
+    // One half turn: segment 0 fails at s = 1/2.
+    let keys = [
+        Key {
+            t: 0.0,
+            points: &p,
+            triangles: &t1,
+        },
+        Key {
+            t: 1.0,
+            points: &half,
+            triangles: &t1,
+        },
+    ];
+    let report = certify_keys(&keys, Player::Exact).unwrap();
+    let (seg, f) = report.first_failure().expect("fails");
+    assert_eq!(seg, 0);
+    assert_eq!(f.at.exact.as_deref(), Some("1/2"));
+    // Times must increase.
+    let keys = [
+        Key {
+            t: 1.0,
+            points: &p,
+            triangles: &t1,
+        },
+        Key {
+            t: 1.0,
+            points: &half,
+            triangles: &t1,
+        },
+    ];
+    assert!(certify_keys(&keys, Player::Exact).is_err());
+}
+
+#[test]
+fn bad_input_is_an_error_not_a_panic() {
+    let p = square();
+    let tris = [[0, 1, 2], [0, 2, 3]];
+    assert!(certify_segment(&p, &p[..3], &tris, Player::Exact).is_err());
+    let mut nan = p.clone();
+    nan[2].x = f64::NAN;
+    assert!(certify_segment(&p, &nan, &tris, Player::Exact).is_err());
+    assert!(certify_span(&p, &p, &tris, 0.5, 0.25, Player::Exact).is_err());
+    // A list that is not a triangulation fails at s = 0.
+    let report = certify_segment(&p, &p, &[[0, 1, 2], [0, 1, 3]], Player::Exact).unwrap();
+    assert!(matches!(report.failure.unwrap().defect, Defect::Start(_)));
+    let report = certify_segment(&p, &p, &[[0, 1, 9], [0, 2, 3]], Player::Exact).unwrap();
+    assert!(matches!(report.failure.unwrap().defect, Defect::Start(_)));
+}
+
+/// Interpolation as a player in f32 does it: coordinates read into f32,
+/// `p + s (q − p)` or `(1 − s) p + s q`.
+fn f32_player(p: &[Point], qp: &[Point], s: f32, form: bool) -> Vec<Point> {
+    p.iter()
+        .zip(qp)
+        .map(|(a, b)| {
+            let f = |x0: f64, x1: f64| {
+                let (x0, x1) = (x0 as f32, x1 as f32);
+                let v = if form {
+                    x0 + s * (x1 - x0)
+                } else {
+                    (1.0 - s) * x0 + s * x1
+                };
+                f64::from(v)
+            };
+            Point::new(f(a.x, b.x), f(a.y, b.y))
+        })
+        .collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+    /// Margins only add conditions: a segment certified for a player is
+    /// certified exactly; and whatever an f32 player draws from a segment
+    /// certified for f32 is a valid shape.
+    #[test]
+    fn margins_are_stronger_and_cover_an_f32_player(seed in any::<u64>(), s in 0.0f32..=1.0) {
+        let mut r = Rng(seed | 1);
+        if let Some((p, qp, tris)) = segment(&mut r) {
+            let exact = certify_segment(&p, &qp, &tris, Player::Exact).unwrap();
+            let f64p = certify_segment(&p, &qp, &tris, Player::F64).unwrap();
+            let f32p = certify_segment(&p, &qp, &tris, Player::F32).unwrap();
+            prop_assert!(!f64p.is_certified() || exact.is_certified());
+            prop_assert!(!f32p.is_certified() || f64p.is_certified());
+            if let (Some(a), Some(b)) = (&exact.failure, &f32p.failure) {
+                // The margin fails no later than the exact motion.
+                prop_assert!(b.at.lo <= a.at.hi, "{} vs {}", b.at, a.at);
+            }
+            if f32p.is_certified() {
+                for form in [true, false] {
+                    for s in [0.0, s, 1.0] {
+                        let drawn = f32_player(&p, &qp, s, form);
+                        prop_assert!(check(&drawn, &tris).is_ok(), "s = {s}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// Certified on [0, lo) of the first failure: every span below it is
+    /// certified, and the shape is valid at a point inside it.
+    #[test]
+    fn certified_below_the_first_failure(seed in any::<u64>(), frac in 0.0f64..1.0) {
+        let mut r = Rng(seed | 1);
+        if let Some((p, qp, tris)) = segment(&mut r) {
+            let report = certify_segment(&p, &qp, &tris, Player::Exact).unwrap();
+            if let Some(f) = report.failure {
+                let s1 = f.at.lo * frac;
+                if s1 < f.at.lo {
+                    let span = certify_span(&p, &qp, &tris, 0.0, s1, Player::Exact).unwrap();
+                    prop_assert!(span.is_certified(), "{:?} below {}", span.failure, f.at);
+                    prop_assert!(valid_at(&p, &qp, &tris, s1).is_ok());
+                }
+                if f.at.hi < 1.0 && matches!(f.defect, Defect::Triangle { .. }) {
+                    // After a triangle's first zero the span is not certified.
+                    let span = certify_span(&p, &qp, &tris, 0.0, f.at.hi, Player::Exact).unwrap();
+                    prop_assert!(!span.is_certified());
+                }
+            }
+        }
+    }
+}

@@ -19,11 +19,11 @@ use rayon::prelude::*;
 use std::path::Path;
 use std::time::Instant;
 
-#[path = "../tests/common/pairs.rs"]
-mod pairs;
 #[path = "../tests/common/stress.rs"]
 #[allow(dead_code, reason = "only the generators are used here")]
 mod harness;
+#[path = "../tests/common/pairs.rs"]
+mod pairs;
 
 /// One pair's measures.
 #[derive(Clone, Debug)]
@@ -81,7 +81,12 @@ fn fractions(k: usize) -> Vec<f64> {
     (0..k).map(|i| i as f64 / (k - 1) as f64).collect()
 }
 
-fn measure(name: String, a: &[immerse::Point], b: &[immerse::Point], options: &CurveMorphOptions) -> Row {
+fn measure(
+    name: String,
+    a: &[immerse::Point],
+    b: &[immerse::Point],
+    options: &CurveMorphOptions,
+) -> Row {
     let start = Instant::now();
     let mut row = Row {
         name,
@@ -204,11 +209,7 @@ fn main() {
                     let p = harness::pair(seed, i);
                     let g = |g: Option<harness::Generator>| g.map_or("?", |g| g.as_str());
                     let row = measure(
-                        format!(
-                            "{i} {} → {}",
-                            g(p.generators[0]),
-                            g(p.generators[1])
-                        ),
+                        format!("{i} {} → {}", g(p.generators[0]), g(p.generators[1])),
                         &p.source,
                         &p.target,
                         &options,

@@ -381,8 +381,14 @@ pub fn view_measures(frames: &[Frame]) -> Option<ViewMeasures> {
         return None;
     }
     let diagonal = |p: &[Point]| {
-        let lo = p.iter().copied().fold(Point::splat(f64::INFINITY), Point::min);
-        let hi = p.iter().copied().fold(Point::splat(f64::NEG_INFINITY), Point::max);
+        let lo = p
+            .iter()
+            .copied()
+            .fold(Point::splat(f64::INFINITY), Point::min);
+        let hi = p
+            .iter()
+            .copied()
+            .fold(Point::splat(f64::NEG_INFINITY), Point::max);
         (hi - lo).length()
     };
     let diag = diagonal(&first.points).max(diagonal(&last.points));
@@ -476,7 +482,10 @@ fn stretch_ratio(from: [Point; 2], to: [Point; 2]) -> Option<f64> {
     let fro = m[0][0].powi(2) + m[0][1].powi(2) + m[1][0].powi(2) + m[1][1].powi(2);
     let d = (m[0][0] * m[1][1] - m[0][1] * m[1][0]).abs();
     let root = (fro * fro - 4.0 * d * d).max(0.0).sqrt();
-    let (s1, s2) = (((fro + root) / 2.0).sqrt(), ((fro - root) / 2.0).max(0.0).sqrt());
+    let (s1, s2) = (
+        ((fro + root) / 2.0).sqrt(),
+        ((fro - root) / 2.0).max(0.0).sqrt(),
+    );
     (s2 > 0.0 && s1.is_finite()).then(|| s1 / s2)
 }
 

@@ -14,10 +14,10 @@
 //! "Placement"); it is applied at every t, so nothing jumps.
 
 use super::layout::{self, lerp3};
-use super::rigid::RigidGuide;
 use super::paths::{
     RotateSlide, ThirdVertexPath, base_frame_angles, from_base_frame, to_base_frame,
 };
+use super::rigid::RigidGuide;
 use crate::geom::Point;
 use crate::tree::{DualTree, RootChoice, Rooted, root_triangle};
 use std::f64::consts::TAU;
@@ -71,12 +71,8 @@ pub struct Compatible {
     /// The polar path's ends, made on first use.
     polar: std::sync::OnceLock<PolarEnds>,
     /// The rigid path's guide, made on first use (`None` where it cannot
-    /// be factored, and the straight guide stands in).
+    /// be factored, and the straight guide toward the target stands in).
     rigid: std::sync::OnceLock<Option<RigidGuide>>,
-    /// Whether the guide heads for the target itself: then t ≥ 1 gives
-    /// the target exactly. A leg whose guide heads elsewhere
-    /// ([`Compatible::with_guide`]) ends where its path does.
-    guide_is_target: bool,
 }
 
 /// The two ends of the polar guide: per vertex, its angle about the
@@ -406,7 +402,6 @@ impl Compatible {
             area_range: straight_area_range(a_s, a_d),
             polar: std::sync::OnceLock::new(),
             rigid: std::sync::OnceLock::new(),
-            guide_is_target: true,
         })
     }
 
@@ -424,10 +419,8 @@ impl Compatible {
     pub(crate) fn with_guide(mut self, end: &[Point]) -> Compatible {
         assert_eq!(end.len(), self.src.len(), "a guide end of another length");
         self.guide_frame = guide_frame(&self.src, end);
-        self.guide_is_target = end == self.dst.as_slice();
         self.guide_end = end.to_vec();
         self.polar = std::sync::OnceLock::new();
-        self.rigid = std::sync::OnceLock::new();
         self
     }
 
@@ -470,10 +463,9 @@ impl Compatible {
         if t <= 0.0 {
             return (self.src.clone(), 0);
         }
-        if t >= 1.0 && (self.guide_is_target || path != ThirdVertexPath::Rigid) {
+        if t >= 1.0 {
             return (self.dst.clone(), 0);
         }
-        let t = t.min(1.0);
         match path {
             ThirdVertexPath::Linear | ThirdVertexPath::RotateSlide => (self.propagate(t, path), 0),
             ThirdVertexPath::Angle => {
@@ -487,7 +479,7 @@ impl Compatible {
                 self.fitted(&layout::factors(&ang), &self.target_guide(t))
             }
             ThirdVertexPath::Rigid => {
-                let guide = self.rigid_guide(t).unwrap_or_else(|| self.guide(t));
+                let guide = self.rigid_guide(t).unwrap_or_else(|| self.target_guide(t));
                 let factors = self.projected_factors(t, &guide);
                 self.fitted(&factors, &guide)
             }
@@ -543,11 +535,11 @@ impl Compatible {
     }
 
     /// The as-rigid-as-possible guide at `t` (the `rigid` path): every
-    /// triangle's rotation and stretch toward the guide's end interpolated
-    /// separately and the positions fitted to them ([`RigidGuide`]). A
-    /// triangle that is not counter-clockwise on the guide's end (a leg
-    /// heading for the other curve under a triangulation that curve does
-    /// not carry) heads for its shape on the target instead. `None` where
+    /// triangle's rotation and stretch toward the target interpolated
+    /// separately and the positions fitted to them ([`RigidGuide`]). It
+    /// heads for the target even on a leg whose straight guide heads
+    /// elsewhere ([`Compatible::with_guide`]): the target is valid under
+    /// this triangulation, where the other curve may not be. `None` where
     /// the system cannot be factored.
     fn rigid_guide(&self, t: f64) -> Option<Vec<Point>> {
         let guide = self.rigid.get_or_init(|| {
@@ -555,26 +547,8 @@ impl Compatible {
                 .triangles
                 .iter()
                 .map(|tri| {
-                    let [a, b, c] = tri.map(|v| v as usize);
-                    let e = &self.guide_end;
-                    if std::env::var("PUREDST").is_err() && crate::geom::orient(e[a], e[b], e[c]).is_ccw() {
-                        [e[b] - e[a], e[c] - e[a]]
-                    } else if std::env::var("MIRROR").is_ok() {
-                        // Mirror the apex over the base: the same shape
-                        // counter-clockwise.
-                        let (u, v) = (e[b] - e[a], e[c] - e[a]);
-                        let l2 = u.length_squared();
-                        let along = u * (v.dot(u) / l2);
-                        let across = v - along;
-                        let mut m = along - across;
-                        if u.perp_dot(m) <= 0.0 {
-                            m = along + u.perp() * 1e-3;
-                        }
-                        [u, m]
-                    } else {
-                        let d = &self.dst;
-                        [d[b] - d[a], d[c] - d[a]]
-                    }
+                    let [a, b, c] = tri.map(|v| self.dst[v as usize]);
+                    [b - a, c - a]
                 })
                 .collect();
             RigidGuide::new(
@@ -582,7 +556,7 @@ impl Compatible {
                 &self.triangles,
                 &ends,
                 &self.rooted,
-                self.guide_frame.0,
+                self.target_frame.0,
             )
         });
         guide.as_ref().map(|g| g.at(t))
@@ -914,19 +888,7 @@ impl Compatible {
 /// The floor of a triangle whose angles in the angle rule are `rule`:
 /// half the smallest of them, at most [`STRAIGHT_MIN_ANGLE`].
 fn floor_of(rule: [f64; 3]) -> f64 {
-    static SHARE: std::sync::LazyLock<f64> = std::sync::LazyLock::new(|| {
-        std::env::var("IMMERSE_FLOOR_SHARE")
-            .ok()
-            .and_then(|v| v.parse().ok())
-            .unwrap_or(0.5)
-    });
-    static CAP: std::sync::LazyLock<f64> = std::sync::LazyLock::new(|| {
-        std::env::var("IMMERSE_FLOOR_CAP")
-            .ok()
-            .and_then(|v| v.parse::<f64>().ok())
-            .map_or(STRAIGHT_MIN_ANGLE, f64::to_radians)
-    });
-    CAP.min(*SHARE * rule[0].min(rule[1]).min(rule[2]))
+    STRAIGHT_MIN_ANGLE.min(0.5 * rule[0].min(rule[1]).min(rule[2]))
 }
 
 /// The angles (base start, base end, third) of the triangle whose third
@@ -945,7 +907,7 @@ fn factor_angles(z: Point) -> [f64; 3] {
 /// circle through both base ends that sees the base at angle `floor`. So
 /// the nearest point is unique and moves no faster than `z`.
 fn project_to_floor(z: Point, floor: f64) -> Point {
-    if !(floor > 0.0) {
+    if floor.is_nan() || floor <= 0.0 {
         return z;
     }
     let (c, s) = (floor.cos(), floor.sin());

@@ -635,9 +635,7 @@ fn sides_beside<R: Send>(
     let tb_in_a = shift_triangles(n, tb, k);
     let a_in_b: Vec<Point> = (0..n).map(|j| a[(j + n - k) % n]).collect();
     let ta_in_b = shift_triangles(n, ta, (n - k) % n);
-    let leg_path = if std::env::var("LEGSTRAIGHT").is_ok() && m.path == ThirdVertexPath::Rigid {
-        ThirdVertexPath::Straight
-    } else if m.path.is_guaranteed() {
+    let leg_path = if m.path.is_guaranteed() {
         m.path
     } else {
         ThirdVertexPath::Hybrid

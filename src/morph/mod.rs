@@ -31,7 +31,7 @@ use crate::tree::RootChoice;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct MorphOptions {
-    /// The third-vertex path. Default: [`ThirdVertexPath::Straight`].
+    /// The third-vertex path. Default: [`ThirdVertexPath::Rigid`].
     pub path: ThirdVertexPath,
     /// The root of the propagation. Default: [`RootChoice::Disk`].
     pub root: RootChoice,
@@ -43,7 +43,7 @@ pub struct MorphOptions {
 impl MorphOptions {
     /// The defaults.
     pub const DEFAULT: MorphOptions = MorphOptions {
-        path: ThirdVertexPath::Straight,
+        path: ThirdVertexPath::Rigid,
         root: RootChoice::Disk,
         fan_margin: DEFAULT_FAN_MARGIN,
     };

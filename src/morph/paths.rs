@@ -31,7 +31,6 @@ pub enum ThirdVertexPath {
     /// into the valid angle set only where that interpolation is invalid.
     /// An immersion for every t; where the linear morph is valid, it is the
     /// linear morph.
-    #[default]
     Straight,
     /// As straight as validity allows along arcs: like `straight`, but the
     /// end shapes are interpolated in polar coordinates about their vertex
@@ -47,7 +46,8 @@ pub enum ThirdVertexPath {
     /// Levin's as-rigid-as-possible interpolation), projected into the
     /// valid angle set where that is invalid. Parts turn instead of
     /// shrinking, spirals wind along their turns, and every t gives an
-    /// immersion.
+    /// immersion. The default.
+    #[default]
     Rigid,
 }
 

@@ -102,8 +102,14 @@ impl RigidGuide {
             // A = G F⁻¹, G = [g0 g1] (columns).
             let [g0, g1] = ends[t];
             let a = [
-                [g0.x * inv[0][0] + g1.x * inv[1][0], g0.x * inv[0][1] + g1.x * inv[1][1]],
-                [g0.y * inv[0][0] + g1.y * inv[1][0], g0.y * inv[0][1] + g1.y * inv[1][1]],
+                [
+                    g0.x * inv[0][0] + g1.x * inv[1][0],
+                    g0.x * inv[0][1] + g1.x * inv[1][1],
+                ],
+                [
+                    g0.y * inv[0][0] + g1.y * inv[1][0],
+                    g0.y * inv[0][1] + g1.y * inv[1][1],
+                ],
             ];
             let theta = (a[1][0] - a[0][1]).atan2(a[0][0] + a[1][1]);
             let (co, si) = (theta.cos(), theta.sin());
@@ -364,11 +370,7 @@ mod tests {
             let rooted = tree.rooted(0);
             let g = RigidGuide::new(&a, &tris, &edges(&b, &tris), &rooted, [mean(&a), mean(&b)])
                 .unwrap();
-            let scale = a
-                .iter()
-                .chain(&b)
-                .map(|p| p.length())
-                .fold(0.0, f64::max);
+            let scale = a.iter().chain(&b).map(|p| p.length()).fold(0.0, f64::max);
             for (t, want) in [(0.0, &a), (1.0, &b)] {
                 let got = g.at(t);
                 for (p, q) in got.iter().zip(want) {
@@ -407,8 +409,8 @@ mod tests {
         let n = a.len();
         let tree = DualTree::new(n, &tris).unwrap();
         let rooted = tree.rooted(0);
-        let g = RigidGuide::new(&a, &tris, &edges(&b, &tris), &rooted, [mean(&a), mean(&b)])
-            .unwrap();
+        let g =
+            RigidGuide::new(&a, &tris, &edges(&b, &tris), &rooted, [mean(&a), mean(&b)]).unwrap();
         let spread = g
             .elements
             .iter()

@@ -61,6 +61,10 @@ pub(crate) struct Leg {
     /// animation moves every vertex in a straight line
     /// ([`Leg::refine_keys`] makes them dense enough).
     pub(crate) keys: Vec<Vec<Point>>,
+    /// Per segment between consecutive keys: whether the straight-line
+    /// motion is certified an immersion for every s in exact arithmetic
+    /// (`crate::certify`); set by [`Leg::refine_keys`].
+    pub(crate) certified: Vec<bool>,
     /// The mean over vertices of the distance each travels over the
     /// samples (the numerator of the detour).
     pub(crate) mean_travel: f64,
@@ -80,6 +84,7 @@ impl Leg {
             samples: vec![0.0],
             travel: vec![0.0],
             keys: vec![first],
+            certified: Vec::new(),
             mean_travel: 0.0,
             least_turning: 0.0,
             end_turning: 0.0,
@@ -149,29 +154,44 @@ impl Leg {
 
     /// Adds keys until the straight segment between every two consecutive
     /// keys keeps within `tol` of the path at its midpoint (each vertex),
-    /// and sets the travel table from the keys: the largest vertex move of
-    /// each segment, so that frames placed at equal steps of travel move
-    /// the fastest vertex at a constant speed. A segment is split down to
-    /// [`MIN_KEY_STEP`] of the leg; where the path's midpoint fails the
-    /// exact check the segment is kept as it is (output frames are checked
-    /// again). Returns the number of such midpoints.
+    /// keeps the path's total area there within [`KEY_AREA_TOLERANCE`], and
+    /// is certified an immersion for every s in exact arithmetic
+    /// (`crate::certify`, docs/design.md §13); then sets the travel table
+    /// from the keys: the largest vertex move of each segment, so that
+    /// frames placed at equal steps of travel move the fastest vertex at a
+    /// constant speed. A segment is split down to [`MIN_KEY_STEP`] of the
+    /// leg and at most [`MAX_KEY_SPLITS`] times per checked sample; where
+    /// the path's midpoint fails the exact check the segment is kept as it
+    /// is. Segments left uncertified are marked in [`Leg::certified`]
+    /// (frames on them are checked exactly, with the path as recovery).
+    /// Returns the number of path midpoints that failed the exact check.
     pub(crate) fn refine_keys(&mut self, tol: f64) -> usize {
         let tris = self.plan.triangles().to_vec();
-        let mut samples = vec![self.samples[0]];
-        let mut keys = vec![self.keys[0].clone()];
-        let mut failed = 0;
         let old_samples = std::mem::take(&mut self.samples);
         let old_keys = std::mem::take(&mut self.keys);
+        let mut out = KeyOut {
+            samples: vec![old_samples[0]],
+            keys: vec![old_keys[0].clone()],
+            certified: Vec::with_capacity(old_samples.len()),
+            failed: 0,
+            budget: MAX_KEY_SPLITS.saturating_mul(old_samples.len()),
+        };
         for i in 1..old_samples.len() {
             self.split(
                 (old_samples[i - 1], &old_keys[i - 1]),
                 (old_samples[i], &old_keys[i]),
                 &tris,
                 tol,
-                (&mut samples, &mut keys),
-                &mut failed,
+                &mut out,
             );
         }
+        let KeyOut {
+            samples,
+            keys,
+            certified,
+            failed,
+            ..
+        } = out;
         let mut travel = Vec::with_capacity(keys.len());
         travel.push(0.0);
         for w in keys.windows(2) {
@@ -181,23 +201,27 @@ impl Leg {
         self.samples = samples;
         self.keys = keys;
         self.travel = travel;
+        self.certified = certified;
         failed
     }
 
     /// Appends the keys of the segment from `a` to `b` (without `a`'s),
     /// splitting it at its midpoint while the path strays from the segment
-    /// by more than `tol` there.
+    /// by more than `tol` there, loses area along it, or the segment is not
+    /// certified.
     fn split(
         &self,
         a: (f64, &[Point]),
         b: (f64, &[Point]),
         tris: &[[u32; 3]],
         tol: f64,
-        out: (&mut Vec<f64>, &mut Vec<Vec<Point>>),
-        failed: &mut usize,
+        out: &mut KeyOut,
     ) {
-        let (out_s, out_k) = out;
-        if b.0 - a.0 > MIN_KEY_STEP {
+        let certified = || {
+            crate::certify::certify_segment(a.1, b.1, tris, crate::certify::Player::Exact)
+                .is_ok_and(|r| r.is_certified())
+        };
+        if b.0 - a.0 > MIN_KEY_STEP && out.budget > 0 {
             let sm = 0.5 * (a.0 + b.0);
             let pm = self.plan.positions(sm, self.path);
             if check_triangles(&pm, tris).is_ok() {
@@ -211,94 +235,51 @@ impl Leg {
                 let shrinks = || {
                     let mid: Vec<Point> =
                         a.1.iter().zip(b.1).map(|(p, q)| p.lerp(*q, 0.5)).collect();
-                    let (on_path, on_chord) =
-                        (area_and_centroid(&pm, tris).0, area_and_centroid(&mid, tris).0);
+                    let (on_path, on_chord) = (
+                        area_and_centroid(&pm, tris).0,
+                        area_and_centroid(&mid, tris).0,
+                    );
                     (on_chord - on_path).abs() > KEY_AREA_TOLERANCE * on_path.abs()
                 };
-                if strays || shrinks() || !segment_looks_valid(a.1, b.1, tris) {
-                    self.split(a, (sm, &pm), tris, tol, (&mut *out_s, &mut *out_k), failed);
-                    self.split((sm, &pm), b, tris, tol, (out_s, out_k), failed);
+                if strays || shrinks() || !certified() {
+                    out.budget -= 1;
+                    self.split(a, (sm, &pm), tris, tol, out);
+                    self.split((sm, &pm), b, tris, tol, out);
                     return;
                 }
-            } else {
-                *failed += 1;
+                out.certified.push(true);
+                out.samples.push(b.0);
+                out.keys.push(b.1.to_vec());
+                return;
             }
+            out.failed += 1;
         }
-        out_s.push(b.0);
-        out_k.push(b.1.to_vec());
+        out.certified.push(certified());
+        out.samples.push(b.0);
+        out.keys.push(b.1.to_vec());
     }
 }
 
-/// Whether the straight-line motion from `a` to `b` keeps every triangle
-/// counter-clockwise and no vertex fan reaches a full turn, judged in
-/// floating point (a triangle's doubled area is a quadratic in the motion's
-/// parameter; a fan can only reach 2π where its two boundary edges point
-/// the same way). Only a reason to split a segment: frames are checked
-/// exactly.
-fn segment_looks_valid(a: &[Point], b: &[Point], tris: &[[u32; 3]]) -> bool {
-    let positive = |c2: f64, c1: f64, c0: f64| -> bool {
-        if !(c0 > 0.0 && c2 + c1 + c0 > 0.0) {
-            return false;
-        }
-        if c2 > 0.0 {
-            let s = -c1 / (2.0 * c2);
-            if s > 0.0 && s < 1.0 {
-                return 4.0 * c2 * c0 - c1 * c1 > 0.0;
-            }
-        }
-        true
-    };
-    // The quadratic of cross(e(s), f(s)) with e, f moving linearly.
-    let cross = |e0: Point, e1: Point, f0: Point, f1: Point| -> [f64; 3] {
-        let (de, df) = (e1 - e0, f1 - f0);
-        [
-            de.perp_dot(df),
-            e0.perp_dot(df) + de.perp_dot(f0),
-            e0.perp_dot(f0),
-        ]
-    };
-    for t in tris {
-        let [x, y, z] = t.map(|v| v as usize);
-        let [c2, c1, c0] = cross(a[y] - a[x], b[y] - b[x], a[z] - a[x], b[z] - b[x]);
-        if !positive(c2, c1, c0) {
-            return false;
-        }
-    }
-    let n = a.len();
-    for v in 0..n {
-        let (next, prev) = ((v + 1) % n, (v + n - 1) % n);
-        let (e0, e1) = (a[next] - a[v], b[next] - b[v]);
-        let (f0, f1) = (a[prev] - a[v], b[prev] - b[v]);
-        let [c2, c1, c0] = cross(e0, e1, f0, f1);
-        let dot = |s: f64| (e0.lerp(e1, s)).dot(f0.lerp(f1, s));
-        let mut roots = Vec::with_capacity(2);
-        if c2 != 0.0 {
-            let disc = c1 * c1 - 4.0 * c2 * c0;
-            if disc >= 0.0 {
-                let q = -0.5 * (c1 + c1.signum() * disc.sqrt());
-                roots.push(q / c2);
-                if q != 0.0 {
-                    roots.push(c0 / q);
-                }
-            }
-        } else if c1 != 0.0 {
-            roots.push(-c0 / c1);
-        } else if c0 == 0.0 && !(dot(0.0) < 0.0 && dot(1.0) < 0.0 && dot(0.5) < 0.0) {
-            return false;
-        }
-        if roots
-            .into_iter()
-            .any(|r| (0.0..=1.0).contains(&r) && dot(r) >= 0.0)
-        {
-            return false;
-        }
-    }
-    true
+/// The keys [`Leg::refine_keys`] builds, and its counters.
+struct KeyOut {
+    samples: Vec<f64>,
+    keys: Vec<Vec<Point>>,
+    /// Per segment: certified for every s in exact arithmetic.
+    certified: Vec<bool>,
+    /// Path midpoints that failed the exact check.
+    failed: usize,
+    /// Splits left.
+    budget: usize,
 }
 
 /// How much the total area of a straight segment's midpoint may differ
 /// from the path's there, relative to the path's (1 %).
 const KEY_AREA_TOLERANCE: f64 = 0.01;
+
+/// Most splits of a leg's segments per checked sample: a bound on the
+/// work and the keys where a path cannot be followed closely (a segment
+/// left unsplit is still checked at every frame).
+const MAX_KEY_SPLITS: usize = 64;
 
 /// Finest split of a segment between keys, in the leg's own parameter.
 const MIN_KEY_STEP: f64 = 1.0 / (1u64 << 30) as f64;
@@ -811,7 +792,7 @@ fn last_leg(
     // rival is given up as soon as it cannot win, and the polar path is
     // tried only where the straight leg did not win over the hybrid one.
     let rigid = inp.final_path == ThirdVertexPath::Rigid;
-    let mut candidates = if rigid && std::env::var("COMPETE").is_ok() {
+    let mut candidates = if rigid {
         vec![
             ThirdVertexPath::Rigid,
             ThirdVertexPath::Straight,
@@ -822,8 +803,7 @@ fn last_leg(
     } else {
         recovery_paths(inp.final_path)
     };
-    let compete = inp.final_path == ThirdVertexPath::Straight
-        || (rigid && std::env::var("COMPETE").is_ok());
+    let compete = inp.final_path == ThirdVertexPath::Straight || rigid;
     let last_rival = ThirdVertexPath::Polar;
     let mut best: Option<(Leg, usize)> = None;
     // The first path when it passed the limit before a rival was tried.

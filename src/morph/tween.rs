@@ -334,8 +334,11 @@ impl Tween {
             }
         };
         let interpolated = between(k);
-        let (points, fallback) = match check_triangles(&interpolated, tris) {
-            Ok(()) => (interpolated, None),
+        // Frames are checked exactly; where the straight segment fails (a
+        // segment the keys could not certify), the path itself is used.
+        let checked = check_triangles(&interpolated, tris).map(|()| interpolated);
+        let (points, fallback) = match checked {
+            Ok(points) => (points, None),
             Err(defect) => {
                 // The segment between the keys is not an immersion here:
                 // the path itself at this t, with the guaranteed paths in

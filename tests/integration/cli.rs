@@ -2,7 +2,7 @@
 //! of bad input gives exit code 2 and exactly one documented stderr line
 //! naming the file (the rows of docs/bad-input.md name these tests).
 
-use crate::util::{assert_stderr, curve, immerse, immerse_in, stderr, stdout};
+use crate::util::{LAST_LEG_RIVALS, assert_stderr, curve, immerse, immerse_in, stderr, stdout};
 
 #[test]
 fn check_json_prints_the_facts() {
@@ -202,11 +202,11 @@ fn morph_writes_verified_json_frames() {
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     let v: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.path().join("m.json")).unwrap()).unwrap();
-    // The default path; the last leg may take the hybrid path where its
-    // vertices travel less ("straight+hybrid").
+    // The default path; the last leg may take another path where its
+    // vertices travel less ("rigid+straight").
     let path = v["path"].as_str().unwrap();
     assert!(
-        path.split('+').all(|p| p == "straight" || p == "hybrid") && path.starts_with("straight"),
+        path.split('+').all(|p| LAST_LEG_RIVALS.contains(&p)) && path.starts_with("rigid"),
         "{path}"
     );
     assert_eq!(v["fallback"], false);

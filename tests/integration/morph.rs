@@ -134,8 +134,10 @@ fn the_hybrid_route_keeps_the_total_area_in_the_fitted_range() {
         let (_, m) = morph_curves(&a.points, &b.points, &fractions(40), &options)
             .unwrap_or_else(|e| panic!("{sa} -> {sb}: {e}"));
         let (a0, a1) = (area(&m.frames[0]), area(&m.frames[39]));
-        // Half the smaller to twice the larger (STRAIGHT_AREA_RANGE), as
-        // every fitted path.
+        // The range of every fitted path (STRAIGHT_AREA_RANGE); frames
+        // interpolate keys whose chords keep the path's total area within
+        // 1 % (docs/design.md §7c), and the range leaves room for that
+        // inside the motion gate [0.8, 1.15].
         let (lo, hi) = (
             a0.min(a1) * STRAIGHT_AREA_RANGE.0,
             a0.max(a1) * STRAIGHT_AREA_RANGE.1,
@@ -143,7 +145,7 @@ fn the_hybrid_route_keeps_the_total_area_in_the_fitted_range() {
         for f in &m.frames {
             let x = area(f);
             assert!(
-                x >= lo * (1.0 - 1e-9) && x <= hi * (1.0 + 1e-9),
+                x >= lo * (1.0 - 0.01) && x <= hi * (1.0 + 0.01),
                 "{sa} -> {sb}: area {x} outside [{lo}, {hi}] at t = {}",
                 f.t
             );

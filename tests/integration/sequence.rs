@@ -4,7 +4,7 @@
 //! hints honoured, and the speed carried through unheld keys; the
 //! `animate` command's outputs and its bad inputs (docs/bad-input.md).
 
-use crate::util::{assert_stderr, curve, immerse, immerse_in, stderr, stdout};
+use crate::util::{LAST_LEG_RIVALS, assert_stderr, curve, immerse, immerse_in, stderr, stdout};
 use immerse::Curve;
 use immerse::Point;
 use immerse::frames::Frame;
@@ -386,10 +386,11 @@ fn animate_writes_every_frame_with_keys_at_their_frame_numbers() {
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("seq.json")).unwrap())
             .unwrap();
-    // The default path (the last legs may take hybrid where it travels less).
+    // The default path (the last legs may take a rival where it travels
+    // less).
     let path = v["path"].as_str().unwrap();
     assert!(
-        path.split('+').all(|p| p == "straight" || p == "hybrid"),
+        path.split('+').all(|p| LAST_LEG_RIVALS.contains(&p)) && path.starts_with("rigid"),
         "{path}"
     );
     let frames = v["frames"].as_array().unwrap();

@@ -3,6 +3,11 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+/// Paths a morph's summary may name at the default options: the default
+/// `rigid`, and the rivals its last leg may take where they travel less
+/// (docs/design.md §7b).
+pub const LAST_LEG_RIVALS: [&str; 5] = ["rigid", "straight", "polar", "hybrid", "angle"];
+
 /// The project's `curves/` folder.
 pub fn curves_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("curves")

@@ -281,7 +281,7 @@ fn serve_bounds_requests_with_json_errors() {
     );
     assert_eq!(status, 400);
     assert!(
-        error_of(&v).starts_with("\"path\": 'wobbly' is not one of hybrid, straight"),
+        error_of(&v).starts_with("\"path\": 'wobbly' is not one of rigid, hybrid, straight"),
         "{v}"
     );
     let (status, v) = server.post(

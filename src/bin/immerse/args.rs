@@ -203,7 +203,7 @@ pub(crate) struct AnimateArgs {
     #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
     pub(crate) hold: Option<f64>,
     /// How each triangle's third vertex travels.
-    #[arg(long, value_enum, default_value_t = PathArg::Straight)]
+    #[arg(long, value_enum, default_value_t = PathArg::Rigid)]
     pub(crate) path: PathArg,
     /// Triangulation quality of each key.
     #[arg(long, value_enum, default_value_t = QualityArg::Delaunay)]
@@ -579,7 +579,7 @@ pub(crate) struct MorphArgs {
     #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(2..=100_000))]
     pub(crate) frames: u32,
     /// How each triangle's third vertex travels.
-    #[arg(long, value_enum, default_value_t = PathArg::Straight)]
+    #[arg(long, value_enum, default_value_t = PathArg::Rigid)]
     pub(crate) path: PathArg,
     /// Triangulation quality of each curve.
     #[arg(long, value_enum, default_value_t = QualityArg::Delaunay)]
@@ -769,7 +769,7 @@ mod tests {
             panic!("not morph")
         };
         assert_eq!(m.frames, 60);
-        assert_eq!(m.path, PathArg::Straight);
+        assert_eq!(m.path, PathArg::Rigid);
         assert_eq!(m.size, (600, 600));
         assert!(Cli::try_parse_from(["immerse", "morph", "a", "b", "--frames", "1"]).is_err());
         assert_eq!(parse_size("640x480"), Ok((640, 480)));

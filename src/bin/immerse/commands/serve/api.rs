@@ -260,7 +260,7 @@ fn options_json(shapes: &ShapeLimits) -> serde_json::Value {
         .map(|l| serde_json::json!({ "name": l.to_string(), "help": null }))
         .collect();
     serde_json::json!({
-        "path": choices(&PathArg::Straight),
+        "path": choices(&PathArg::Rigid),
         "intermediate": choices(&IntermediateArg::Target),
         "correspondence": choices(&CorrespondenceArg::Best),
         "quality": choices(&QualityArg::Delaunay),

@@ -434,7 +434,7 @@ pub(super) fn plan(req: MorphRequest, limits: &ShapeLimits) -> Result<Plan, ApiE
         .unwrap_or("loop")
         .parse()
         .map_err(|e: render::RenderError| ApiError::bad(format!("\"loop\": {e}")))?;
-    let path: PathArg = value("path", req.path.as_deref(), PathArg::Straight)?;
+    let path: PathArg = value("path", req.path.as_deref(), PathArg::Rigid)?;
     let quality: QualityArg = value("quality", req.quality.as_deref(), QualityArg::Delaunay)?;
     let counts: CountsArg = value("counts", req.counts.as_deref(), CountsArg::Insert)?;
     let intermediate: IntermediateArg = value(

@@ -54,6 +54,11 @@ skip=(
   'cargo test --release --test integration*|part of the test suite; CI runs the whole suite'
   'cargo test --release --test hostile*|the hostile-traffic test of the playground server (about a minute); .ci/run runs it'
   'cargo run --release --example stress -- --pairs 10000*|the long stress run takes minutes; .ci/run runs it'
+  'scripts/python-test.sh*|builds the Python wheel from scratch and runs pytest (several minutes); .ci/run runs it'
+  'pip install*|installs the Python package (docs/python.md); scripts/python-test.sh does it in a fresh venv'
+  'python*|Python commands of docs/python.md and docs/inkscape.md need the package installed; scripts/python-test.sh runs their tests'
+  'cargo install*|installs the binary into ~/.cargo/bin (docs/inkscape.md)'
+  'cp inkscape/*|installs the Inkscape extension into a user folder; scripts/python-test.sh runs it through Inkscape'
   'cargo run --release --example stress -- --replay*|replays tests/stress-regressions/, which the test suite replays too (stress_regressions_all_morph)'
 )
 

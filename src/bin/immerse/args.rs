@@ -502,7 +502,7 @@ pub(crate) enum PathArg {
     Rigid,
     /// Rotate-slide angles blended just enough to stay an immersion (guaranteed).
     Hybrid,
-    /// As straight as validity allows: linear where the linear morph is valid (guaranteed).
+    /// As straight as validity allows: linear where the linear morph is valid; on the last leg it competes with hybrid and polar (guaranteed).
     Straight,
     /// As straight as validity allows along arcs about the centre: spirals wind (guaranteed).
     Polar,

@@ -63,11 +63,11 @@
 //! faer is built without its `rayon` feature; the only parallelism is the
 //! two columns.
 
-use crate::geom::Point;
 use faer::Mat;
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use immerse_base::geom::Point;
 
 /// Residual norm, relative to the right-hand side's, at which BiCGSTAB
 /// stops.

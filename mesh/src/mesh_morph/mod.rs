@@ -69,10 +69,10 @@ mod power;
 pub use power::{MAX_POWER, MAX_POWER_ENTRIES, MAX_SAMPLES, PowerChoice, power_choice};
 
 use crate::coords::{self, Weights};
-use crate::geom::{Orientation, Point, orient};
 use crate::solve::SparseSolver;
 use crate::tiling::validate::{Topology, faces_strictly_convex, validate_topology};
 use crate::tiling::{Tiling, TilingError};
+use immerse_base::geom::{Orientation, Point, orient};
 
 /// How the vertices travel; the names are the CLI values.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -348,9 +348,9 @@ impl LinearCheck {
 /// # Examples
 ///
 /// ```
-/// use immerse::mesh_morph::check_linear;
-/// use immerse::tiling::Tiling;
-/// # fn main() -> Result<(), immerse::tiling::TilingError> {
+/// use immerse_mesh::mesh_morph::check_linear;
+/// use immerse_mesh::tiling::Tiling;
+/// # fn main() -> Result<(), immerse_mesh::tiling::TilingError> {
 /// let faces = r#""faces": [[0,1,4],[1,2,4],[2,3,4],[3,0,4]]"#;
 /// let a = Tiling::from_json_str(&format!(r#"{{"points": [[0,0],[1,0],[1,1],[0,1],[0.3,0.3]], {faces}}}"#))?;
 /// let b = Tiling::from_json_str(&format!(r#"{{"points": [[0,0],[1,0],[1,1],[0,1],[0.7,0.6]], {faces}}}"#))?;
@@ -686,8 +686,8 @@ pub(crate) fn interpolate3(v0: f64, vm: f64, v1: f64, tm: f64, t: f64) -> f64 {
 /// # Examples
 ///
 /// ```
-/// use immerse::mesh_morph::{mesh_morph, Method, MeshMorphOptions};
-/// use immerse::tiling::Tiling;
+/// use immerse_mesh::mesh_morph::{mesh_morph, Method, MeshMorphOptions};
+/// use immerse_mesh::tiling::Tiling;
 /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// let faces = r#""faces": [[0,1,4],[1,2,4],[2,3,4],[3,0,4]]"#;
 /// let a = Tiling::from_json_str(&format!(r#"{{"points": [[0,0],[1,0],[1,1],[0,1],[0.3,0.3]], {faces}}}"#))?;

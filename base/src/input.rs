@@ -1,8 +1,8 @@
 //! Reading input files through a size cap.
 //!
-//! Every file the library reads ([`crate::Curve::from_path`],
-//! [`crate::tiling::Tiling::from_path`]) and the command line's timeline
-//! files go through [`read_capped`]: a regular file longer than the cap is
+//! Every file the workspace reads (curves in `immerse`, tilings in
+//! `immerse-mesh`, the command line's timelines) goes through
+//! [`read_capped`]: a regular file longer than the cap is
 //! refused from its length, without reading it, and anything else (a
 //! device such as `/dev/zero`, a FIFO, a pipe, a `/proc` file, a file that
 //! grows while it is read) is read through the cap, so reading stops one
@@ -12,8 +12,10 @@ use std::io::Read;
 use std::path::Path;
 
 /// Why [`read_capped`] returned no data.
+///
+/// Exhaustive on purpose: each reader (curves, tilings, timelines) words
+/// every case in its own terms, so a new case must reach all of them.
 #[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
 pub enum ReadError {
     /// The path could not be opened or read; the operating system's reason.
     #[error("{0}")]
@@ -67,7 +69,7 @@ fn size_text(size: Option<u64>, limit: u64) -> String {
 ///
 /// ```
 /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
-/// use immerse::input::{ReadError, read_capped};
+/// use immerse_base::input::{ReadError, read_capped};
 /// let dir = std::env::temp_dir().join(format!("immerse-doc-{}", std::process::id()));
 /// std::fs::create_dir_all(&dir)?;
 /// let file = dir.join("four.txt");

@@ -9,8 +9,8 @@
 //! multigrid-preconditioned solve (see `src/solve.rs`).
 //! Frames are evenly spaced over [0, 1], so larger `k` means smaller steps.
 
-use immerse::mesh_morph::{MeshMorphOptions, Method, mesh_morph};
-use immerse::tiling::{Tiling, grid_pair};
+use immerse_mesh::mesh_morph::{MeshMorphOptions, Method, mesh_morph};
+use immerse_mesh::tiling::{Tiling, grid_pair};
 use std::time::Instant;
 
 fn median(mut v: Vec<f64>) -> f64 {

@@ -66,7 +66,7 @@ fn coord(p: Point) -> Coord<f64> {
 /// # Examples
 ///
 /// ```
-/// use immerse::geom::{orient, Orientation, Point};
+/// use immerse_base::geom::{orient, Orientation, Point};
 /// let o = orient(Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.0, 1.0));
 /// assert_eq!(o, Orientation::CounterClockwise);
 /// ```
@@ -117,7 +117,7 @@ pub fn half_plane_class(v: Point, r: Point, x: Point) -> Option<u8> {
 /// # Examples
 ///
 /// ```
-/// use immerse::geom::{is_fan_order_less, Point};
+/// use immerse_base::geom::{is_fan_order_less, Point};
 /// let v = Point::new(0.0, 0.0);
 /// let r = Point::new(1.0, 0.0);
 /// let up = Point::new(0.0, 1.0);

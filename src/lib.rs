@@ -17,8 +17,8 @@
 //! ```
 //!
 //! Every stage uses [`geom`] for positions and exact predicates; [`geom`]
-//! and [`input`] (capped file reading) live in the `immerse-base` crate,
-//! which `immerse-mesh` shares, and are re-exported here.
+//! and [`input`] (capped file reading) re-export the `immerse-base` crate,
+//! which `immerse-mesh` shares.
 //!
 //! Between frames, players move every vertex on a straight line;
 //! [`certify`] decides exactly whether such a segment stays an immersed
@@ -57,14 +57,13 @@ pub mod curve;
 pub mod error;
 pub mod flip;
 pub mod frames;
+pub mod geom;
 pub mod immersion;
+pub mod input;
 pub mod morph;
 pub mod quality;
 pub mod sequence;
 pub mod tree;
-
-#[doc(inline)]
-pub use immerse_base::{geom, input};
 
 pub use curve::Curve;
 pub use error::{Error, Result};

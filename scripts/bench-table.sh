@@ -5,7 +5,7 @@
 #   - check and maxmin at scale (the command line)        examples/bench_dp.rs --scale
 #   - frame generation (vertices × frames per second)   examples/bench_frames.rs
 #   - rendering (120 PNG frames at 1024×1024)            render/examples/bench_render.rs
-#   - the convex-combination mesh solver (time/frame)    examples/bench_mesh.rs
+#   - the convex-combination mesh solver (time/frame)    mesh/examples/bench_mesh.rs
 #   - with --morph-scale: `immerse morph` at n = 400 to 5000 beside flubber
 #     0.4.2 (installed into a temporary folder with npm, as
 #     scripts/peer-compare.sh does)                       examples/bench_morph_scale.rs
@@ -38,6 +38,7 @@ export CARGO_TERM_COLOR=never
 echo "Building the benchmark examples (release)..." >&2
 cargo build --release --quiet --examples --bin immerse
 cargo build --release --quiet -p immerse-render --examples
+cargo build --release --quiet -p immerse-mesh --examples
 
 echo "# immerse benchmarks ($(date -u +%Y-%m-%d), $(nproc) cores)"
 echo
@@ -59,7 +60,7 @@ cargo run --release --quiet -p immerse-render --example bench_render
 echo
 echo "## Mesh solver (convex method) — target: 100,000 interior vertices < 0.1 s per frame"
 echo
-cargo run --release --quiet --example bench_mesh
+cargo run --release --quiet -p immerse-mesh --example bench_mesh
 if $morph_scale; then
   echo
   echo "## \`immerse morph\` by vertex count — targets: n = 400 < 0.06 s, n = 2000 < 0.5 s, n = 5000 < 3 s, growth at most n² log n"

@@ -41,7 +41,7 @@ limit=60
 # Commands that are not run, as bash glob patterns matched against the
 # command (trailing comment removed), each with the reason.
 skip=(
-  'cargo test --release|the whole test suite takes several minutes on 2 cores; CI runs it'
+  'cargo test --release --workspace|the whole test suite takes several minutes on 2 cores; CI runs it'
   'cargo bench*|criterion benchmarks take minutes; see benches/README.md'
   'scripts/bench-table.sh*|runs every benchmark (several minutes); its output is docs/benchmarks.md'
   'scripts/certify-pairs.sh*|morphs and certifies the 22 motion pairs (about a minute with the build); its totals are in docs/design.md §13.3'

@@ -16,7 +16,9 @@
 //!   ──> quality ──> tree ──> correspond ──> morph ──> frames
 //! ```
 //!
-//! Every stage uses [`geom`] for positions and exact predicates.
+//! Every stage uses [`geom`] for positions and exact predicates; [`geom`]
+//! and [`input`] (capped file reading) re-export the `immerse-base` crate,
+//! which `immerse-mesh` shares.
 //!
 //! Between frames, players move every vertex on a straight line;
 //! [`certify`] decides exactly whether such a segment stays an immersed
@@ -44,28 +46,12 @@
 //!
 //! ## Mesh family
 //!
-//! Compatible planar tilings (docs/design.md §9) are read and validated by
-//! [`tiling`], their interior vertices written as convex combinations by
-//! [`coords`], and morphed by [`mesh_morph::mesh_morph`] with the
-//! guaranteed-injective convex-combination methods of Floater & Gotsman,
-//! Surazhsky & Gotsman (convex, intrinsic, power, local), or linearly;
-//! [`mesh_morph::check_linear`] decides exactly whether the linear morph
-//! is valid.
-//!
-//! ```
-//! use immerse::mesh_morph::{mesh_morph, MeshMorphOptions, Method};
-//! use immerse::tiling::grid_pair;
-//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
-//! let (a, b) = grid_pair(8, 1);
-//! let frames = mesh_morph(&a, &b, Method::Convex, &[0.0, 0.5, 1.0], &MeshMorphOptions::DEFAULT)?;
-//! assert!(frames.iter().all(|f| f.valid));
-//! # Ok(())
-//! # }
-//! ```
+//! Morphs of compatible planar tilings (docs/design.md §9) are a product of
+//! their own, the `immerse-mesh` crate of this workspace; the `immerse`
+//! binary's `mesh-morph` command runs them.
 #![deny(rustdoc::broken_intra_doc_links)]
 
 pub mod certify;
-pub mod coords;
 pub mod correspond;
 pub mod curve;
 pub mod error;
@@ -74,12 +60,9 @@ pub mod frames;
 pub mod geom;
 pub mod immersion;
 pub mod input;
-pub mod mesh_morph;
 pub mod morph;
 pub mod quality;
 pub mod sequence;
-mod solve;
-pub mod tiling;
 pub mod tree;
 
 pub use curve::Curve;

@@ -57,6 +57,7 @@
 mod easing;
 mod error;
 mod frame;
+mod io;
 mod lottie;
 mod output;
 mod raster;
@@ -67,13 +68,15 @@ mod view;
 pub use easing::{Easing, frame_times};
 pub use error::RenderError;
 pub use frame::Frame;
+pub use io::{
+    Destination, NewOutputDir, OutputFile, check_output_dir, check_output_file, frame_file_name,
+    is_stdout, remove_partial_outputs, resolve_output, write_atomic,
+};
 pub use lottie::{LOTTIE_TOLERANCE_PX, lottie, write_lottie};
 pub use output::{
-    Destination, GIF_MAX_FPS, Loop, MAX_FPS, MIN_FPS, NewOutputDir, Output, OutputFile, check_fps,
-    check_gif_fps, check_output_dir, check_output_file, contact_sheet, contact_sheet_columns,
-    contact_sheet_size, encode_gif, fps_in_range, frame_file_name, is_stdout,
-    remove_partial_outputs, resolve_output, write_atomic, write_contact_sheet, write_gif,
-    write_png_sequence,
+    GIF_MAX_FPS, Loop, MAX_FPS, MIN_FPS, Output, check_fps, check_gif_fps, contact_sheet,
+    contact_sheet_columns, contact_sheet_size, encode_gif, fps_in_range, write_contact_sheet,
+    write_gif, write_png_sequence,
 };
 pub use raster::{encode_png, render};
 pub use style::{Rgba, Style};

@@ -569,7 +569,7 @@ fn inputs_are_read_through_a_cap_devices_and_fifos_included() {
         2,
         "immerse: timeline.json: too large (more than 16777216 bytes; the limit is 16777216 bytes)",
     );
-    let mesh_cap = immerse::tiling::MAX_FILE_BYTES;
+    let mesh_cap = immerse_mesh::tiling::MAX_FILE_BYTES;
     assert_stderr(
         Some(d),
         &["mesh-morph", "mesh.obj", "mesh.obj", "--check-linear"],

@@ -11,7 +11,6 @@ mod certify_cli;
 mod cli;
 mod curves;
 mod immersion;
-mod mesh;
 mod morph;
 mod outputs;
 mod pairs;

@@ -5,9 +5,9 @@ use super::plain_points;
 use crate::Outcome;
 use crate::args::{MeshMorphArgs, MethodArg, WeightsArg};
 use crate::output;
-use immerse::coords::Weights;
-use immerse::mesh_morph::{LinearCheck, MeshMorphOptions, Method, check_linear, mesh_morph};
-use immerse::tiling::Tiling;
+use immerse_mesh::coords::Weights;
+use immerse_mesh::mesh_morph::{LinearCheck, MeshMorphOptions, Method, check_linear, mesh_morph};
+use immerse_mesh::tiling::Tiling;
 use immerse_render as render;
 use serde::Serialize;
 

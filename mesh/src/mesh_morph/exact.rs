@@ -19,7 +19,7 @@
 //! angle; the two are equivalent because an angle of a continuously moving
 //! valid sector leaves (0, π) exactly when the area changes sign.
 
-use crate::geom::{Orientation, Point, orient};
+use immerse_base::geom::{Orientation, Point, orient};
 
 fn two_sum(a: f64, b: f64) -> (f64, f64) {
     let s = a + b;

@@ -94,6 +94,7 @@ pub fn turning_number(points: &[Point]) -> Turning {
 }
 
 /// Do the closed segments `a–b` and `c–d` share at least one point? Exact.
+#[inline]
 pub fn segments_touch(a: Point, b: Point, c: Point, d: Point) -> bool {
     let o1 = orient(a, b, c);
     let o2 = orient(a, b, d);
@@ -177,6 +178,7 @@ pub fn is_simple(points: &[Point]) -> bool {
 
 /// The three interior angles (radians) of the triangle `a, b, c`, at `a`,
 /// `b` and `c`. Measurement only: never used for a decision.
+#[inline]
 pub fn triangle_angles(a: Point, b: Point, c: Point) -> [f64; 3] {
     let ang = |p: Point, q: Point, r: Point| {
         let (u, v) = (q - p, r - p);
@@ -190,6 +192,7 @@ pub fn triangle_angles(a: Point, b: Point, c: Point) -> [f64; 3] {
 /// angle does), without trigonometry: the least of |cross| / (|u| |v|)
 /// over the corners (the obtuse corner's sine is never smaller). 0 for a
 /// degenerate triangle. Measurement only.
+#[inline]
 pub fn min_angle_sine(a: Point, b: Point, c: Point) -> f64 {
     let (ab, bc, ca) = (b - a, c - b, a - c);
     let cross = ab.perp_dot(bc).abs();

@@ -8,8 +8,8 @@
 //! Every reader validates the result ([`super::validate`]).
 
 use super::{MAX_FILE_BYTES, MAX_VERTICES, Tiling, TilingError};
-use crate::geom::Point;
-use crate::input::{ReadError, read_capped};
+use immerse_base::geom::Point;
+use immerse_base::input::{ReadError, read_capped};
 use std::path::Path;
 
 #[derive(serde::Deserialize)]

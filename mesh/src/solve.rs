@@ -1,73 +1,74 @@
 //! Sparse solves of the mesh morphs' interior systems.
 //!
-//! The mesh morphs solve `x_i − Σ_j λ_ij x_j = Σ_{j ∈ B} λ_ij x_j` for the
-//! interior vertices `i` (Floater & Gotsman eq. 5.3), once per frame, for x and
-//! y at once. The matrix is not symmetric, its pattern is fixed by the
-//! connectivity, its values change smoothly with t, and for the convex
-//! combination morphs it is an M-matrix (unit diagonal, row-stochastic positive
-//! weights, weakly diagonally dominant). So:
+//! Every frame of a convex-combination morph solves
+//! `x_i − Σ_j λ_ij x_j = Σ_{j ∈ B} λ_ij x_j` for the interior vertices `i`
+//! (Floater & Gotsman eq. 5.3), for x and y. Three properties of these
+//! systems shape the solver:
 //!
-//! * [`SparseSolver::new`] stores the pattern in rows (for the iteration)
-//!   and in columns (for the direct fallback);
-//! * the first [`SparseSolver::solve`] builds an aggregation multigrid
-//!   hierarchy ([`Multigrid`]): two rounds of pairwise aggregation per level
-//!   (each node paired with its most strongly coupled free neighbour), so
-//!   about four fine nodes per coarse node, down to at most [`COARSEST`]
-//!   (100) nodes;
-//!   piecewise-constant prolongation, Galerkin coarse matrices `Pᵀ A P`;
-//! * every solve (the first included) loads the new values, recomputes the
-//!   coarse matrices in place (one scatter-add per level through
-//!   precomputed slots, plus a dense LU of the coarsest, ≤ [`COARSEST`]
-//!   nodes), and runs BiCGSTAB right-preconditioned by one W-cycle: no
-//!   pre-smoothing, restriction of the residual, coarse correction scaled by
-//!   [`CORRECTION_SCALE`], one backward Gauss–Seidel sweep;
-//! * x and y are solved as two independent single-column systems, in
-//!   parallel (`rayon::join`; the matrix and hierarchy are shared, read
-//!   only). Each has its own work space ([`Work`]: Krylov vectors and every
-//!   level's cycle vectors), allocated once per connectivity and reused by
-//!   every iteration and frame, so the iteration allocates nothing;
-//! * the warm start is, per column, the previous solution or its linear or
-//!   quadratic extrapolation from the previous two or three (frames are
-//!   smooth in t), whichever has the smallest residual: ≈ 5e-7 relative at
-//!   41 frames with the quadratic one, against 1e-5 with the linear one;
-//! * it stops at a residual of [`RELATIVE_RESIDUAL`] (1e-11, relative to the
-//!   right-hand side, per column). Why that is safe: `A` is an M-matrix with
-//!   `A⁻¹ ≥ 0`, so `‖A⁻¹‖∞ = max h` with `A h = 1` (h is the expected number
-//!   of random-walk steps to the boundary), and the position error is at
-//!   most `‖A⁻¹‖∞ ‖r‖∞ ≤ max h · 1e-11 · ‖b‖₂`. On the 99,856-vertex grid
-//!   pair: max h ≈ 2.4e4, ‖b‖₂ ≈ 6.7, bound ≈ 1.6e-6, while the shortest
-//!   interior edge of every frame is ≈ 1.9e-3 (over 1,000 times larger).
-//!   Measured, the largest coordinate change from refining each frame's
-//!   solution to 1e-15 is ≈ 6e-11. Frames are still checked exactly
-//!   (`valid`) afterwards, as before. 1e-13 cost ≈ 3 more iterations a
-//!   frame (≈ 25 %);
-//! * when BiCGSTAB breaks down or has not converged after
-//!   [`MAX_ITERATIONS`], the frame is solved directly by faer's sparse LU
-//!   (COLAMD ordering, partial pivoting; the symbolic analysis is done at
-//!   the first fallback and reused).
+//! * the pattern is fixed by the connectivity, so everything that depends
+//!   on the pattern alone is built once and reused by every frame;
+//! * the values change smoothly with t, so the previous frames' solutions
+//!   are good starting points;
+//! * for the convex combination morphs the matrix is an M-matrix (unit
+//!   diagonal, positive row-stochastic weights, weakly diagonally dominant)
+//!   but not symmetric: a Krylov method for unsymmetric systems (BiCGSTAB)
+//!   fits, preconditioned by multigrid, which removes the low-frequency
+//!   error that one-level preconditioners (ILU(0) and the like) leave, so
+//!   that a frame takes 7–8 iterations at 100k unknowns where a one-level
+//!   preconditioner takes hundreds.
 //!
-//! Why multigrid: the previous preconditioner, the last full LU, cost
-//! ≈ 68 ms per BiCGSTAB iteration at 100k unknowns (its triangular solves)
-//! and ≈ 0.4 s per refactorisation; ILU(0)-type one-level preconditioners
-//! do not remove the low-frequency error, so their iteration count grows
-//! with the mesh size (hundreds of iterations at 100k unknowns for 1e-13).
+//! **Once per connectivity.** [`SparseSolver::new`] stores the pattern in
+//! rows (for the iteration) and in columns (for the direct fallback). The
+//! first [`SparseSolver::solve`] builds an aggregation multigrid hierarchy
+//! ([`Multigrid`]): two rounds of pairwise aggregation per level (each node
+//! paired with its most strongly coupled free neighbour), so about four
+//! fine nodes per coarse node, down to at most [`COARSEST`] nodes;
+//! piecewise-constant prolongation and Galerkin coarse matrices `Pᵀ A P`.
+//! It also allocates each column's work space ([`Work`]: the Krylov
+//! vectors and every level's cycle vectors), so no iteration allocates.
 //!
-//! What each setting bought, at 99,856 unknowns, 41 frames (per further
-//! frame, noisy 2-core machine; see `benches/README.md`): two threads
-//! (x ∥ y) 0.24 → 0.15 s; quadratic extrapolation ≈ 11.5 → 8.5 iterations;
-//! post-smoothing only (one sweep instead of two, 10–11 iterations) and a
-//! 100-node coarsest level 0.15 → 0.105 s; tolerance 1e-11 → ≈ 0.085 s.
-//! A V-cycle needs ≈ 20 iterations and is slower; forward-only smoothing
-//! is slower than backward-only.
+//! **Every solve** loads the new values, recomputes the coarse matrices in
+//! place (one scatter-add per level through precomputed slots, and a dense
+//! LU of the coarsest level) and runs BiCGSTAB right-preconditioned by one
+//! W-cycle ([`CYCLE`]): no pre-smoothing, restriction of the residual, the
+//! coarse correction scaled by [`CORRECTION_SCALE`], one backward
+//! Gauss–Seidel sweep. x and y are two independent single-column systems
+//! solved in parallel (`rayon::join`; the matrix and the hierarchy are
+//! shared, read only). This is the only parallelism: faer is built without
+//! its `rayon` feature.
 //!
-//! faer is built without its `rayon` feature; the only parallelism is the
-//! two columns.
+//! **Warm start.** Per column, the previous solution or its linear or
+//! quadratic extrapolation from the previous two or three (frames are
+//! evenly spaced in t), whichever has the smallest residual. With 41
+//! frames the quadratic one starts at a relative residual of about 5e-7,
+//! the linear one at about 1e-5.
+//!
+//! **Tolerance.** The iteration stops at a residual of
+//! [`RELATIVE_RESIDUAL`] (1e-11, relative to the right-hand side, per
+//! column). The position error this allows is bounded: `A` is an M-matrix,
+//! so `A⁻¹ ≥ 0` and `‖A⁻¹‖∞ = max h` with `A h = 1` (h is the expected
+//! number of random-walk steps to the boundary), and the error is at most
+//! `‖A⁻¹‖∞ ‖r‖∞ ≤ max h · 1e-11 · ‖b‖₂`. On the 99,856-vertex grid pair
+//! max h ≈ 2.4e4 and ‖b‖₂ ≈ 6.7, so the bound is ≈ 1.6e-6, while the
+//! shortest interior edge of every frame is ≈ 1.9e-3, over a thousand times
+//! larger; refining each frame's solution to 1e-15 moves no coordinate by
+//! more than ≈ 6e-11. A tolerance of 1e-13 costs about three more
+//! iterations a frame (≈ 25 %). The solver's accuracy is not what makes a
+//! frame valid: every frame is checked exactly afterwards (`valid`).
+//!
+//! **Fallback.** When BiCGSTAB breaks down or has not converged after
+//! [`MAX_ITERATIONS`], the frame is solved directly by faer's sparse LU
+//! (COLAMD ordering, partial pivoting); its symbolic analysis is done at
+//! the first fallback and reused.
+//!
+//! The settings above were chosen by measurement at 10k and 100k unknowns;
+//! the measurements are in `benches/README.md` ("Mesh morph").
 
-use crate::geom::Point;
 use faer::Mat;
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use immerse_base::geom::Point;
 
 /// Residual norm, relative to the right-hand side's, at which BiCGSTAB
 /// stops.

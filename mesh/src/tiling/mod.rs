@@ -8,7 +8,7 @@
 //!
 //! Reading ([`read`]) accepts Wavefront OBJ and JSON. Validation
 //! ([`validate`]) decides Definition 2.1 exactly with
-//! [`crate::geom::predicates`]: instead of testing every pair of faces for
+//! [`immerse_base::geom::predicates`]: instead of testing every pair of faces for
 //! overlap (quadratic), it checks that the faces form a combinatorial disk,
 //! that every face is strictly convex and counter-clockwise, that the faces
 //! around every vertex wind around it exactly once, and that the boundary is
@@ -23,7 +23,7 @@
 pub mod read;
 pub mod validate;
 
-use crate::geom::Point;
+use immerse_base::geom::Point;
 use std::path::PathBuf;
 
 /// Largest number of vertices a tiling may have: bounds memory and time on
@@ -48,8 +48,8 @@ pub const MAX_COORDINATE: f64 = 1.267_650_600_228_229_4e30;
 /// # Examples
 ///
 /// ```
-/// use immerse::tiling::Tiling;
-/// # fn main() -> Result<(), immerse::tiling::TilingError> {
+/// use immerse_mesh::tiling::Tiling;
+/// # fn main() -> Result<(), immerse_mesh::tiling::TilingError> {
 /// let t = Tiling::from_json_str(
 ///     r#"{"points": [[0,0],[1,0],[1,1],[0,1]], "faces": [[0,1,2],[0,2,3]]}"#,
 /// )?;

@@ -17,7 +17,7 @@
 //! reproduce the vertex).
 
 use super::{MeshFrame, MeshMorphError, MeshMorphOptions, Problem, check_star_linear, lerp};
-use crate::geom::Point;
+use immerse_base::geom::Point;
 use std::f64::consts::TAU;
 
 /// How one star moves.

@@ -1,19 +1,22 @@
 //! Mesh family: tilings, barycentric coordinates and mesh morphs, checked
 //! against the worked examples of Floater & Gotsman and Surazhsky & Gotsman.
 
-use immerse::coords::{Weights, star_weights};
-use immerse::geom::{Point, orient};
-use immerse::mesh_morph::{
+use immerse_base::geom::{Point, orient};
+use immerse_mesh::coords::{Weights, star_weights};
+use immerse_mesh::mesh_morph::{
     LinearCheck, MeshFrame, MeshMorphOptions, Method, check_linear, check_star_linear, mesh_morph,
     power_choice,
 };
-use immerse::tiling::{Tiling, TilingError};
+use immerse_mesh::tiling::{Tiling, TilingError};
 use std::path::{Path, PathBuf};
 
+/// The workspace's sample tilings (`meshes/`, beside this crate's folder).
+fn meshes() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../meshes")
+}
+
 fn mesh(name: &str) -> Tiling {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("meshes")
-        .join(name);
+    let path = meshes().join(name);
     Tiling::from_path(&path).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
@@ -58,7 +61,7 @@ const PAIRS: [(&str, &str); 5] = [
 
 #[test]
 fn every_sample_mesh_is_a_tiling() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes");
+    let dir = meshes();
     let mut count = 0;
     for entry in std::fs::read_dir(dir).unwrap() {
         let path: PathBuf = entry.unwrap().path();

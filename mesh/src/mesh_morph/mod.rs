@@ -5,62 +5,75 @@
 //! *Intrinsic Morphing*) and *Controllable Morphing of Compatible Planar
 //! Triangulations* (cited as *Controllable Morphing*).
 //!
-//! Two [`Tiling`]s with the same faces are morphed by one of five [`Method`]s.
-//! All but `linear` represent every interior vertex `i` as a convex combination
-//! `x_i = Σ_j λ_ij(t) x_j` of its edge neighbours and solve the sparse system
-//! `x_i − Σ_j λ_ij(t) x_j = Σ_{j∈B} λ_ij(t) x_j(t)` per frame
-//! (Floater & Gotsman eq. 5.3, through `crate::solve`). Strictly positive
-//! weights and a convex boundary give a valid tiling (Tutte; Floater), so:
+//! [`mesh_morph`] turns two [`Tiling`]s with the same faces into one
+//! [`MeshFrame`] per requested time, in three steps:
 //!
-//! * [`Method::Linear`]: `x_i(t) = (1 − t) x_i⁰ + t x_i¹` (Floater & Gotsman
-//!   eq. 4.1); may degenerate (Floater & Gotsman Lemma 4.3).
-//! * [`Method::Convex`]: `λ_ij(t) = (1 − t) λ_ij⁰ + t λ_ij¹` (Floater & Gotsman
-//!   §5).
-//! * [`Method::Intrinsic`]: the sector angles and edge lengths are interpolated
-//!   and put into the mean value formula (Surazhsky & Gotsman *Intrinsic
-//!   Morphing* eq. 6 in eq. 2); [`MeshMorphOptions::weights`] is not used.
-//! * [`Method::Power`]: with the stochastic neighbourhood matrix
-//!   `M = [[A, B], [0, I]]` of each tiling, `M(t) = (1 − t) M₀^m + t M₁^m` and
-//!   `x = M(t) x` (Surazhsky & Gotsman *Controllable Morphing* §3.3). `m = 1`
-//!   is `convex`; as `m → ∞` `M^m` tends to the projection onto the boundary
-//!   and the morph to the linear one. Validity is no longer guaranteed for
-//!   `m > 1`, so the largest valid `m` is searched by doubling then bisection,
-//!   and a fractional refinement `(1 − d)·M(t; m) + d·M(t; m + 1)` with the
-//!   largest valid `d ∈ [0, 1]` by bisection (Surazhsky & Gotsman *Controllable
-//!   Morphing* eq. 14, which we read as blending powers `m` and `m + 1`).
-//!   "Valid" is checked exactly on the requested times plus
-//!   [`MeshMorphOptions::validity_samples`] evenly spaced ones (deviation: the
-//!   paper does not say how it samples).
-//! * [`Method::Local`]: every star (interior vertex with its neighbours,
-//!   translated so the centre is at the origin) is morphed on its own: linearly
-//!   when the exact test of Surazhsky & Gotsman *Controllable Morphing*
-//!   Appendix A says the star's linear morph is valid, otherwise by
-//!   interpolating the polar coordinates of its neighbours (Surazhsky & Gotsman
-//!   *Controllable Morphing* §4 and §4.1); the weights of the centre in the
-//!   morphed star give row `i` of `A(t)`. With
+//! 1. **Set-up** (`Problem`): both tilings are validated, their faces
+//!    compared, the interior vertices numbered, and, where the boundaries
+//!    differ, the boundary motion prepared.
+//! 2. **Positions at t**: the boundary is placed, then the method gives the
+//!    interior. [`Method::Linear`] moves every vertex on a straight line
+//!    (Floater & Gotsman eq. 4.1). Every other method writes each interior
+//!    vertex as a convex combination `x_i = Σ_j λ_ij(t) x_j` of its edge
+//!    neighbours and solves `x_i − Σ_j λ_ij(t) x_j = Σ_{j∈B} λ_ij(t) x_j(t)`
+//!    for the interior (Floater & Gotsman eq. 5.3, by the private `solve`
+//!    module). Strictly positive weights and a convex boundary give a valid
+//!    tiling (Tutte; Floater); the methods differ in how `λ(t)` is made.
+//! 3. **Check**: every frame's `valid` flag is decided exactly (every face
+//!    strictly convex and counter-clockwise), whatever the method promises.
+//!
+//! The weights of each method:
+//!
+//! * [`Method::Convex`]: `λ_ij(t) = (1 − t) λ_ij⁰ + t λ_ij¹`, the weights of
+//!   [`MeshMorphOptions::weights`] interpolated (Floater & Gotsman §5).
+//! * [`Method::Intrinsic`]: the sector angles and edge lengths of each star
+//!   are interpolated and put into the mean value formula (Surazhsky &
+//!   Gotsman *Intrinsic Morphing* eq. 6 in eq. 2);
+//!   [`MeshMorphOptions::weights`] is not used.
+//! * [`Method::Power`] (`power.rs`): the stochastic neighbourhood matrix
+//!   `M = [[A, B], [0, I]]` of each tiling is raised to a power `m`, and
+//!   `x = M(t) x` with `M(t) = (1 − t) M₀^m + t M₁^m` (Surazhsky & Gotsman
+//!   *Controllable Morphing* §3.3). `m = 1` is `convex`; as `m` grows the
+//!   morph tends to the linear one and is no longer guaranteed valid, so the
+//!   largest valid `m` is searched (doubling, then bisection), then the
+//!   largest `d ∈ [0, 1]` for which `(1 − d)·M(t; m) + d·M(t; m + 1)` stays
+//!   valid (bisection; this blend of powers `m` and `m + 1` is how eq. 14 of
+//!   *Controllable Morphing* is implemented). A candidate is valid when
+//!   every frame at the requested times and at
+//!   [`MeshMorphOptions::validity_samples`] evenly spaced ones is valid
+//!   (checked exactly; the paper leaves the sampling open).
+//! * [`Method::Local`] (`local.rs`): every star (an interior vertex with its
+//!   neighbours, centred at the origin) is morphed on its own: linearly when
+//!   [`check_star_linear`] (*Controllable Morphing* Appendix A) says the
+//!   star's linear morph stays valid, otherwise by interpolating its
+//!   neighbours' polar coordinates (*Controllable Morphing* §4, §4.1); the
+//!   centre's weights in the morphed star are row `i` of `A(t)`. With
 //!   [`MeshMorphOptions::area_improvement`] every sector's radial edges are
-//!   rescaled so its area evolves linearly, keeping the ratio of the linearly
-//!   interpolated edge lengths, and each edge takes the mean of its two
-//!   sectors' lengths (Surazhsky & Gotsman *Controllable Morphing* §4.3,
-//!   eq. 24); angles are kept, so validity is too.
-//! * [`MeshMorphOptions::intermediate`]: a tiling `T_m` to pass through at
-//!   `t_m` (Surazhsky & Gotsman *Controllable Morphing* §3.4). Each weight (or,
-//!   for `intrinsic`, each angle and length) follows a monotone piecewise cubic
-//!   Hermite interpolant (Fritsch–Butland slopes) through its values at 0,
-//!   `t_m` and 1, and rows are renormalised. Deviation: the paper uses
-//!   piecewise Bézier curves; monotone pieces likewise stay within the range of
-//!   their end values, so weights stay positive and the morph stays valid and
-//!   C¹.
-//! * Different boundaries (Floater & Gotsman §6): each boundary vertex moves by
-//!   interpolating its polar coordinates about the moving barycentre of the
-//!   boundary vertices; both boundaries must be star-shaped about their
-//!   barycentre (checked exactly). The interior then follows the method. The
-//!   intermediate boundaries need not be convex, so validity is not guaranteed
-//!   there; every [`MeshFrame`] says whether it is valid.
+//!   rescaled so that its area evolves linearly, keeping the ratio of the
+//!   linearly interpolated edge lengths, and each edge takes the mean of its
+//!   two sectors' lengths (*Controllable Morphing* §4.3, eq. 24); the
+//!   angles are kept, so validity is too.
 //!
-//! [`check_linear`] decides exactly whether the linear morph is valid
-//! (Surazhsky & Gotsman *Controllable Morphing* Theorem 4.1 with the Appendix A
-//! test on every star).
+//! Two more things shape the path of the methods that solve:
+//!
+//! * [`MeshMorphOptions::intermediate`] (`convex` and `intrinsic`): a tiling
+//!   `T_m` to pass through at `t_m` (*Controllable Morphing* §3.4). Each
+//!   weight (for `intrinsic`, each angle and length) follows a monotone
+//!   piecewise cubic Hermite interpolant (Fritsch–Butland slopes) through its
+//!   values at 0, `t_m` and 1, and the rows are renormalised. The paper uses
+//!   piecewise Bézier curves; monotone pieces serve the same end, since they
+//!   stay between their end values: weights stay positive, so the morph
+//!   stays valid, and it is C¹.
+//! * Different boundaries (Floater & Gotsman §6): each boundary vertex
+//!   interpolates its polar coordinates about the moving barycentre of the
+//!   boundary vertices, so both boundaries must be star-shaped about their
+//!   barycentre (checked exactly). The boundaries in between need not be
+//!   convex, so validity is not guaranteed there; each frame's `valid` flag
+//!   says.
+//!
+//! [`check_linear`] (`exact.rs`) decides exactly whether the linear morph
+//! is valid, without sampling: the Appendix A test of *Controllable
+//! Morphing* (Theorem 4.1) on every face corner.
 
 mod exact;
 mod local;
@@ -69,10 +82,10 @@ mod power;
 pub use power::{MAX_POWER, MAX_POWER_ENTRIES, MAX_SAMPLES, PowerChoice, power_choice};
 
 use crate::coords::{self, Weights};
-use crate::geom::{Orientation, Point, orient};
 use crate::solve::SparseSolver;
 use crate::tiling::validate::{Topology, faces_strictly_convex, validate_topology};
 use crate::tiling::{Tiling, TilingError};
+use immerse_base::geom::{Orientation, Point, orient};
 
 /// How the vertices travel; the names are the CLI values.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -348,9 +361,9 @@ impl LinearCheck {
 /// # Examples
 ///
 /// ```
-/// use immerse::mesh_morph::check_linear;
-/// use immerse::tiling::Tiling;
-/// # fn main() -> Result<(), immerse::tiling::TilingError> {
+/// use immerse_mesh::mesh_morph::check_linear;
+/// use immerse_mesh::tiling::Tiling;
+/// # fn main() -> Result<(), immerse_mesh::tiling::TilingError> {
 /// let faces = r#""faces": [[0,1,4],[1,2,4],[2,3,4],[3,0,4]]"#;
 /// let a = Tiling::from_json_str(&format!(r#"{{"points": [[0,0],[1,0],[1,1],[0,1],[0.3,0.3]], {faces}}}"#))?;
 /// let b = Tiling::from_json_str(&format!(r#"{{"points": [[0,0],[1,0],[1,1],[0,1],[0.7,0.6]], {faces}}}"#))?;
@@ -686,8 +699,8 @@ pub(crate) fn interpolate3(v0: f64, vm: f64, v1: f64, tm: f64, t: f64) -> f64 {
 /// # Examples
 ///
 /// ```
-/// use immerse::mesh_morph::{mesh_morph, Method, MeshMorphOptions};
-/// use immerse::tiling::Tiling;
+/// use immerse_mesh::mesh_morph::{mesh_morph, Method, MeshMorphOptions};
+/// use immerse_mesh::tiling::Tiling;
 /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// let faces = r#""faces": [[0,1,4],[1,2,4],[2,3,4],[3,0,4]]"#;
 /// let a = Tiling::from_json_str(&format!(r#"{{"points": [[0,0],[1,0],[1,1],[0,1],[0.3,0.3]], {faces}}}"#))?;

@@ -11,9 +11,9 @@
 //! products beyond [`MAX_POWER_ENTRIES`] entries end the search.
 
 use super::{MeshFrame, MeshMorphError, MeshMorphOptions, Problem};
-use crate::geom::Point;
 use crate::solve::SparseSolver;
 use crate::tiling::Tiling;
+use immerse_base::geom::Point;
 
 /// Largest number of stored entries of a matrix power before the power
 /// search stops (bounds memory: 16 bytes per entry).

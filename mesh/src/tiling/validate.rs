@@ -21,7 +21,7 @@
 //! compares coordinates only, and each step turns by less than π.
 
 use super::{MAX_COORDINATE, MAX_VERTICES, Tiling, TilingError};
-use crate::geom::{Orientation, Point, orient};
+use immerse_base::geom::{Orientation, Point, orient};
 use std::collections::HashMap;
 
 /// Index-only structure of a tiling: boundary cycle and the fan of

@@ -6,8 +6,8 @@
 //! difference divided by ten (see `benches/README.md`).
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use immerse::mesh_morph::{MeshMorphOptions, Method, mesh_morph};
-use immerse::tiling::{Tiling, grid_pair};
+use immerse_mesh::mesh_morph::{MeshMorphOptions, Method, mesh_morph};
+use immerse_mesh::tiling::{Tiling, grid_pair};
 use std::hint::black_box;
 
 fn pair(n: usize) -> (Tiling, Tiling) {

@@ -57,6 +57,7 @@ impl Orientation {
     }
 }
 
+#[inline]
 fn coord(p: Point) -> Coord<f64> {
     Coord { x: p.x, y: p.y }
 }
@@ -66,16 +67,18 @@ fn coord(p: Point) -> Coord<f64> {
 /// # Examples
 ///
 /// ```
-/// use immerse::geom::{orient, Orientation, Point};
+/// use immerse_base::geom::{orient, Orientation, Point};
 /// let o = orient(Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(0.0, 1.0));
 /// assert_eq!(o, Orientation::CounterClockwise);
 /// ```
+#[inline]
 pub fn orient(a: Point, b: Point, c: Point) -> Orientation {
     Orientation::from_det(robust::orient2d(coord(a), coord(b), coord(c)))
 }
 
 /// Exact in-circle test: true when `d` lies strictly inside the circle
 /// through `a`, `b`, `c`, which must be counter-clockwise.
+#[inline]
 pub fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
     robust::incircle(coord(a), coord(b), coord(c), coord(d)) > 0.0
 }
@@ -86,6 +89,7 @@ pub fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
 ///
 /// The class orders angles: a smaller class means a smaller
 /// counter-clockwise angle φ ∈ [0, 2π) from the reference direction.
+#[inline]
 pub fn half_plane_class(v: Point, r: Point, x: Point) -> Option<u8> {
     if x == v {
         return None;
@@ -117,7 +121,7 @@ pub fn half_plane_class(v: Point, r: Point, x: Point) -> Option<u8> {
 /// # Examples
 ///
 /// ```
-/// use immerse::geom::{is_fan_order_less, Point};
+/// use immerse_base::geom::{is_fan_order_less, Point};
 /// let v = Point::new(0.0, 0.0);
 /// let r = Point::new(1.0, 0.0);
 /// let up = Point::new(0.0, 1.0);
@@ -125,6 +129,7 @@ pub fn half_plane_class(v: Point, r: Point, x: Point) -> Option<u8> {
 /// assert!(is_fan_order_less(v, r, up, down)); // 90° < 270°
 /// assert!(!is_fan_order_less(v, r, down, up));
 /// ```
+#[inline]
 pub fn is_fan_order_less(v: Point, r: Point, u: Point, w: Point) -> bool {
     let (Some(cu), Some(cw)) = (half_plane_class(v, r, u), half_plane_class(v, r, w)) else {
         return false;

@@ -22,7 +22,7 @@
 //! Gotsman, *Intrinsic Morphing of Compatible Triangulations*
 //! (docs/design.md §9).
 
-use crate::geom::{Orientation, Point, orient};
+use immerse_base::geom::{Orientation, Point, orient};
 
 /// Which barycentric coordinates represent an interior vertex.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]

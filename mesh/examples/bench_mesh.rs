@@ -1,16 +1,17 @@
 //! Times the mesh morphs on generated grid pairs ([`grid_pair`]) and prints
-//! a markdown table. Run with `cargo run --release --example bench_mesh`
+//! a markdown table. Run with
+//! `cargo run --release -p immerse-mesh --example bench_mesh`
 //! (optionally followed by grid sizes, default `102 318`, i.e. 10,000 and
 //! 99,856 interior vertices).
 //!
 //! Per-frame time is `(T(1 + k frames) − T(1 frame)) / k`: the set-up
 //! (validation, weights, the multigrid hierarchy) and the first frame's solve
 //! from zero are paid once, every further frame is a warm-started
-//! multigrid-preconditioned solve (see `src/solve.rs`).
+//! multigrid-preconditioned solve (see `mesh/src/solve.rs`).
 //! Frames are evenly spaced over [0, 1], so larger `k` means smaller steps.
 
-use immerse::mesh_morph::{MeshMorphOptions, Method, mesh_morph};
-use immerse::tiling::{Tiling, grid_pair};
+use immerse_mesh::mesh_morph::{MeshMorphOptions, Method, mesh_morph};
+use immerse_mesh::tiling::{Tiling, grid_pair};
 use std::time::Instant;
 
 fn median(mut v: Vec<f64>) -> f64 {

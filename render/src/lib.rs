@@ -67,7 +67,7 @@ mod view;
 pub use easing::{Easing, frame_times};
 pub use error::RenderError;
 pub use frame::Frame;
-pub use lottie::{LOTTIE_TOLERANCE_PX, lottie, write_lottie};
+pub use lottie::{Keys, lottie, lottie_keys, write_lottie};
 pub use output::{
     Destination, GIF_MAX_FPS, Loop, MAX_FPS, MIN_FPS, NewOutputDir, Output, OutputFile, check_fps,
     check_gif_fps, check_output_dir, check_output_file, contact_sheet, contact_sheet_columns,
@@ -78,7 +78,8 @@ pub use output::{
 pub use raster::{encode_png, render};
 pub use style::{Rgba, Style};
 pub use svg::{
-    BACKGROUND_ID, OUTLINE_ID, animated_svg, svg_frame, write_animated_svg, write_svg_sequence,
+    BACKGROUND_ID, OUTLINE_ID, animated_svg, animated_svg_keys, svg_frame, write_animated_svg,
+    write_svg_sequence,
 };
 pub use tiny_skia;
 pub use view::View;

@@ -5,6 +5,7 @@ mod animate;
 mod certify;
 mod check;
 mod demo;
+mod keyed;
 mod mesh_morph;
 mod morph;
 mod serve;

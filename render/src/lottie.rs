@@ -421,58 +421,56 @@ mod tests {
         assert_eq!(bg[0]["s"]["k"], serde_json::json!([320, 200]));
     }
 
-    /// Interpolating the written keyframes reproduces every frame within
-    /// one pixel, and fewer keyframes than frames are written.
+    /// Exactly the keys given are written, at their (fractional) times,
+    /// with the decimals asked for, and linear interpolation.
     #[test]
-    fn keyframe_reduction_stays_within_a_pixel() {
-        let frames = turning_square(121);
+    fn keys_are_written_at_their_times_with_their_digits() {
+        let frames = turning_square(3);
         let style = Style::DEFAULT.with_size(512, 512).with_onion_skin(false);
-        let doc = parse(&lottie(&frames, &style, 30.0, Loop::Loop).unwrap());
-        let keys = doc["layers"][0]["shapes"][0]["it"][0]["ks"]["k"]
-            .as_array()
-            .unwrap()
-            .clone();
-        assert!(
-            keys.len() < 121 && keys.len() > 2,
-            "{} keyframes",
-            keys.len()
-        );
         let view = View::fit(&frames, &style);
-        let at = |k: &Value| -> (f64, Vec<[f64; 2]>) {
-            let v = k["s"][0]["v"].as_array().unwrap();
-            (
-                k["t"].as_f64().unwrap(),
-                v.iter()
-                    .map(|p| [p[0].as_f64().unwrap(), p[1].as_f64().unwrap()])
-                    .collect(),
-            )
-        };
-        let mut worst: f64 = 0.0;
-        for (m, f) in frames.iter().enumerate() {
-            let m = m as f64;
-            let w = keys.windows(2).find(|w| at(&w[1]).0 >= m).unwrap();
-            let ((t0, p0), (t1, p1)) = (at(&w[0]), at(&w[1]));
-            let s = (m - t0) / (t1 - t0);
-            for (k, &i) in f.outline.iter().enumerate() {
-                let exact = view.to_pixel(f.points[i as usize]);
-                let x = p0[k][0] + s * (p1[k][0] - p0[k][0]);
-                let y = p0[k][1] + s * (p1[k][1] - p0[k][1]);
-                worst = worst.max(((x - exact[0]).powi(2) + (y - exact[1]).powi(2)).sqrt());
+        let times = [0.0, 7.25, 20.0];
+        for digits in [Some(2), Some(5), None] {
+            let keys = Keys {
+                shapes: &frames,
+                times: &times,
+                frames: 21,
+                view,
+                digits,
+            };
+            let doc = parse(&lottie_keys(&keys, &style, 30.0).unwrap());
+            assert_eq!(doc["op"], 21);
+            let k = doc["layers"][0]["shapes"][0]["it"][0]["ks"]["k"]
+                .as_array()
+                .unwrap()
+                .clone();
+            assert_eq!(k.len(), 3);
+            for (key, (f, &t)) in k.iter().zip(frames.iter().zip(&times)) {
+                assert_eq!(key["t"].as_f64(), Some(t));
+                let v = key["s"][0]["v"].as_array().unwrap();
+                for (p, &i) in v.iter().zip(&f.outline) {
+                    let exact = view.to_pixel(f.points[i as usize]);
+                    for c in 0..2 {
+                        let written = p[c].as_f64().unwrap();
+                        let want = round_to(exact[c], digits);
+                        assert_eq!(written, want, "digits {digits:?}");
+                    }
+                }
             }
+            assert_eq!(k[0]["i"]["x"], 1);
+            assert_eq!(k[0]["o"]["x"], 0);
         }
-        assert!(worst <= LOTTIE_TOLERANCE_PX, "worst {worst} px");
-        // A straight-line motion needs only its two ends.
-        let line: Vec<Frame> = (0..50)
-            .map(|i| {
-                let d = i as f64;
-                Frame::from_triangles(vec![[d, 0.0], [d + 10.0, 0.0], [d, 10.0]], vec![[0, 1, 2]])
-            })
-            .collect();
-        let doc = parse(&lottie(&line, &style, 30.0, Loop::Once).unwrap());
-        let keys = doc["layers"][0]["shapes"][0]["it"][0]["ks"]["k"]
-            .as_array()
-            .unwrap();
-        assert_eq!(keys.len(), 2);
+        // Times must increase and end at the last frame at most.
+        let bad = Keys {
+            shapes: &frames,
+            times: &[0.0, 3.0, 3.0],
+            frames: 21,
+            view,
+            digits: None,
+        };
+        assert!(matches!(
+            lottie_keys(&bad, &style, 30.0),
+            Err(RenderError::KeyTime { key: 2, .. })
+        ));
     }
 
     #[test]
@@ -483,13 +481,9 @@ mod tests {
             vec![[0, 1, 2], [0, 2, 3]],
         );
         let frames = vec![tri.clone(), tri, quad.clone(), quad];
-        let keys = keyframes(
-            &frames.iter().map(|f| f.points.clone()).collect::<Vec<_>>(),
-            1.0,
-        );
-        assert_eq!(keys, vec![0, 1, 2, 3]);
         let doc = parse(&lottie(&frames, &Style::DEFAULT, 10.0, Loop::Loop).unwrap());
         let k = &doc["layers"][0]["shapes"][0]["it"][0]["ks"]["k"];
+        assert_eq!(k.as_array().unwrap().len(), 4);
         assert_eq!(k[1]["h"], 1);
     }
 

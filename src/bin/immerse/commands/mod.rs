@@ -5,9 +5,9 @@ mod animate;
 mod certify;
 mod check;
 mod demo;
-mod keyed;
+pub(crate) mod keyed;
 mod mesh_morph;
-mod morph;
+pub(crate) mod morph;
 mod serve;
 mod triangulate;
 

@@ -126,7 +126,7 @@ pub(crate) fn write(
         }
     }
     anyhow::bail!(
-        "the {} is not certified as written, even in full precision, for {} player: {why}; nothing was written (a larger --size gives thin parts more room)",
+        "the {} is not certified as written, even in full precision, for {} player: {why}; nothing was written (the shapes there are thinner than that player's rounding; an animated SVG, -o NAME.svg, is certified for f64 players)",
         kind.name(),
         match kind.player() {
             Player::F32 => "an f32",

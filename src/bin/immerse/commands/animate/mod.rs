@@ -493,18 +493,18 @@ fn summary(
     let valid = morph.frames.iter().filter(|f| f.is_immersion()).count();
     let certified = (0..seq.key_count() - 1).all(|s| seq.tween(s).is_certified());
     let mut lines = vec![format!(
-        "{} keys, {} vertices each, {keyframes} keyframes ({}), {} frames at {} fps ({:.2} s), {} of them verified immersions",
+        "{} keys, {} vertices each, {} frames at {} fps ({:.2} s), {} of them verified immersions; {keyframes} keyframes ({})",
         keys.len(),
         seq.vertex_count(),
+        frames,
+        schedule.fps,
+        (frames.max(1) - 1) as f64 / schedule.fps,
+        valid,
         if certified {
             "every segment between them certified"
         } else {
             "some segments not certified: frames there checked one by one"
-        },
-        frames,
-        schedule.fps,
-        (frames.max(1) - 1) as f64 / schedule.fps,
-        valid
+        }
     )];
     for s in speeds {
         let k = &keys[s.key - 1];

@@ -14,9 +14,9 @@
 
 use super::http::ApiError;
 use crate::args::{CorrespondenceArg, CountsArg, IntermediateArg, PathArg, QualityArg};
+use crate::commands::keyed::{self, Played};
 use bytes::Bytes;
 use clap::ValueEnum;
-use crate::commands::keyed::{self, Played};
 use immerse::frames::{Fallback, Morph};
 use immerse::morph::{
     Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, Keyframe,
@@ -743,14 +743,8 @@ pub(super) fn make(job: &Job, want: &Want, stop: &Stop) -> Result<File, ApiError
             job.gif_total.store(0, Ordering::Relaxed);
             file("image/gif", gif.map_err(render_err)?)
         }
-        Want::Svg => file(
-            "image/svg+xml",
-            keyed_file(job, keyed::Kind::AnimatedSvg)?,
-        ),
-        Want::Lottie => file(
-            "application/json",
-            keyed_file(job, keyed::Kind::Lottie)?,
-        ),
+        Want::Svg => file("image/svg+xml", keyed_file(job, keyed::Kind::AnimatedSvg)?),
+        Want::Lottie => file("application/json", keyed_file(job, keyed::Kind::Lottie)?),
         Want::Json => File {
             content_type: "application/json",
             bytes: job.morph_json.clone(),
@@ -762,9 +756,16 @@ pub(super) fn make(job: &Job, want: &Want, stop: &Stop) -> Result<File, ApiError
 /// The job's Lottie or animated SVG from its keys, certified as written
 /// (as `immerse morph -o` writes it).
 fn keyed_file(job: &Job, kind: keyed::Kind) -> Result<Vec<u8>, ApiError> {
-    keyed::write(kind, &job.played, job.view, &job.style, job.fps, job.looping)
-        .map(|w| w.text.into_bytes())
-        .map_err(|e| ApiError::new(500, format!("{e:#}")))
+    keyed::write(
+        kind,
+        &job.played,
+        job.view,
+        &job.style,
+        job.fps,
+        job.looping,
+    )
+    .map(|w| w.text.into_bytes())
+    .map_err(|e| ApiError::new(500, format!("{e:#}")))
 }
 
 #[cfg(test)]

@@ -3,7 +3,11 @@
 //! distance under the best cyclic shift; 1 = straight lines), the unwind
 //! (least total absolute turning of a frame over the smaller end's; below
 //! 1 = overlaps undone and redone), flips, fallbacks and wall time, on the
-//! 40 frames a morph writes.
+//! 40 frames a morph writes; and, untimed, the other measures of
+//! docs/design.md §7c: the largest single-vertex step at 40, 320 and 2,560
+//! frames (continuity), and at 320 frames the longest edge, the area
+//! range, the smallest angle (each ÷ the ends') and the
+//! as-rigid-as-possible distortion.
 //!
 //! Each row also gives the winding reference: the detour of the natural
 //! winding motion between the same end frames (see [`winding_reference`]).
@@ -16,9 +20,10 @@
 //! (docs/motion-by-option.md).
 
 use immerse::Curve;
-use immerse::frames::metrics;
+use immerse::frames::{metrics, view_measures};
 use immerse::morph::{
-    Correspondence, CurveMorphOptions, Intermediate, MorphOptions, ThirdVertexPath, morph_curves,
+    Correspondence, CurveMorphOptions, Intermediate, MorphOptions, ThirdVertexPath, Tween,
+    morph_curves,
 };
 use std::path::Path;
 use std::time::Instant;
@@ -36,8 +41,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     // Every option changed alone from the defaults, then the earlier
     // defaults: a table per option and a summary table at the end.
-    let sets: [&[&str]; 14] = [
+    let sets: [&[&str]; 15] = [
         &[],
+        &["--path", "straight"],
         &["--correspondence", "outline"],
         &["--correspondence", "corners"],
         &["--correspondence", "min-flips"],
@@ -134,9 +140,9 @@ fn table(options: &CurveMorphOptions, reps: usize) -> Result<Summary, Box<dyn st
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("curves");
     let fractions: Vec<f64> = (0..40).map(|i| f64::from(i) / 39.0).collect();
     println!(
-        "| pair | n | detour | winding reference | unwind | flips | path | fallbacks | valid | time (ms) |"
+        "| pair | n | detour | winding reference | unwind | largest step 40 / 320 / 2,560 | edge | area | angle | distortion | flips | path | fallbacks | valid | time (ms) |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let (mut detours, mut unwinds, mut total_ms) = (Vec::new(), Vec::new(), 0.0);
     for (a, b) in pairs::motion_pairs() {
         let ca = Curve::from_path(dir.join(&a))?;
@@ -155,10 +161,11 @@ fn table(options: &CurveMorphOptions, reps: usize) -> Result<Summary, Box<dyn st
         match result.expect("at least one repetition") {
             Ok((report, morph)) => {
                 let m = metrics(&morph.frames);
+                let (steps, view) = view_of(&ca.points, &cb.points, options);
                 detours.push(m.detour);
                 unwinds.push(m.unwind);
                 println!(
-                    "| {a} → {b} | {} | {:.2} | {:.2} | {:.2} | {} | {} | {} | {}/{} | {ms:.1} |",
+                    "| {a} → {b} | {} | {:.2} | {:.2} | {:.2} | {steps} | {view} | {} | {} | {} | {}/{} | {ms:.1} |",
                     report.n,
                     m.detour,
                     winding_reference(&morph.frames, fractions.len()),
@@ -170,7 +177,7 @@ fn table(options: &CurveMorphOptions, reps: usize) -> Result<Summary, Box<dyn st
                     m.frames,
                 );
             }
-            Err(e) => println!("| {a} → {b} | | | | | | | error: {e} | | {ms:.1} |"),
+            Err(e) => println!("| {a} → {b} | | | | | | | | | | | | error: {e} | | {ms:.1} |"),
         }
     }
     detours.sort_by(f64::total_cmp);
@@ -182,6 +189,49 @@ fn table(options: &CurveMorphOptions, reps: usize) -> Result<Summary, Box<dyn st
         below: unwinds.iter().filter(|&&u| u < 0.9).count(),
         total_ms,
     })
+}
+
+/// The measures of docs/design.md §7c beyond detour and unwind, untimed:
+/// the largest single-vertex step (fraction of the diagonal) at 40, 320
+/// and 2,560 frames, marked "jump" where it does not shrink 4× (or stay
+/// under 1 %) from one count to the next; and at 320 frames the longest
+/// edge ÷ the ends', the area range ÷ the ends', the smallest angle ÷ the
+/// ends' and the as-rigid-as-possible distortion, as table cells.
+fn view_of(
+    a: &[immerse::Point],
+    b: &[immerse::Point],
+    options: &CurveMorphOptions,
+) -> (String, String) {
+    let none = || ("".to_string(), " | | | ".to_string());
+    let Ok(tween) = Tween::new(a, b, options) else {
+        return none();
+    };
+    let mut steps = [0.0; 3];
+    let mut at_320 = None;
+    for (i, count) in [40usize, 320, 2560].into_iter().enumerate() {
+        let f: Vec<f64> = (0..count).map(|k| k as f64 / (count - 1) as f64).collect();
+        let Some(v) = tween.morph(&f).ok().and_then(|m| view_measures(&m.frames)) else {
+            return none();
+        };
+        steps[i] = v.max_step;
+        if count == 320 {
+            at_320 = Some(v);
+        }
+    }
+    let ok = |x: f64, y: f64| y <= x / 4.0 || y < 0.01;
+    let jump = if ok(steps[0], steps[1]) && ok(steps[1], steps[2]) {
+        ""
+    } else {
+        " jump"
+    };
+    let v = at_320.expect("320 frames measured");
+    (
+        format!("{:.4} / {:.4} / {:.4}{jump}", steps[0], steps[1], steps[2]),
+        format!(
+            "{:.2} | {:.2}–{:.2} | {:.2} | {:.2}",
+            v.edge_ratio, v.area_low, v.area_high, v.angle_ratio, v.distortion
+        ),
+    )
 }
 
 /// The detour of the natural winding motion between the same two end

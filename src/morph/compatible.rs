@@ -940,10 +940,11 @@ fn project_to_floor(z: Point, floor: f64) -> Point {
         let a2 = (q2 - centre).to_angle();
         let a1 = (q1 - centre).to_angle();
         let a = r.to_angle();
-        // q2 lies right of the centre and q1 left: the upper arc runs from
-        // a2 up to a1 counter-clockwise.
-        let span = (a1 - a2).rem_euclid(TAU);
-        let at = (a - a2).rem_euclid(TAU);
+        // q1 (on the side from the base's start) lies right of the centre
+        // and q2 left: the upper arc runs from a1 over the top to a2
+        // counter-clockwise.
+        let span = (a2 - a1).rem_euclid(TAU);
+        let at = (a - a1).rem_euclid(TAU);
         if at <= span {
             Some(centre + Point::from_angle(a) * radius)
         } else {
@@ -1681,6 +1682,63 @@ pub(crate) mod tests {
             checked >= 10,
             "only {checked} pairs had a valid linear morph"
         );
+    }
+
+    /// The projection onto a triangle's floor set is the nearest point of
+    /// the set: it lies in the set (every angle at least the floor, up to
+    /// rounding), no sampled point of the set's boundary is nearer, and it
+    /// moves no more than its argument (1-Lipschitz), so the rigid path
+    /// is as continuous as its guide.
+    #[test]
+    fn the_floor_projection_is_the_nearest_point_and_continuous() {
+        let mut rng = Rng(0x5eed_f100);
+        for _ in 0..2000 {
+            let floor = 0.001 + rng.next() * 0.5;
+            let z = Point::new(rng.next() * 6.0 - 2.5, rng.next() * 6.0 - 2.5);
+            let p = project_to_floor(z, floor);
+            let a = factor_angles(p);
+            assert!(
+                a.iter().all(|&x| x >= floor - 1e-9) && p.y > 0.0,
+                "z {z} floor {floor}: {p} has angles {a:?}"
+            );
+            if a.iter().all(|&x| x >= floor) && factor_angles(z).iter().all(|&x| x >= floor) {
+                continue;
+            }
+            // The boundary sampled finely: the two walls and the arc.
+            let (c, s) = (floor.cos(), floor.sin());
+            let apex = Point::new(0.5, 0.5 * s / c);
+            let (q1, q2) = (
+                Point::new(c, s) * (2.0 * c),
+                Point::new(1.0, 0.0) + Point::new(-c, s) * (2.0 * c),
+            );
+            let centre = Point::new(0.5, 0.5 * c / s);
+            let (a1, a2) = ((q1 - centre).to_angle(), (q2 - centre).to_angle());
+            let span = (a2 - a1).rem_euclid(TAU);
+            let k = 4000;
+            let nearest = (0..=k)
+                .flat_map(|i| {
+                    let u = i as f64 / k as f64;
+                    [
+                        apex.lerp(q1, u),
+                        apex.lerp(q2, u),
+                        centre + Point::from_angle(a1 + span * u) * (0.5 / s),
+                    ]
+                })
+                .map(|b| (b - z).length())
+                .fold(f64::INFINITY, f64::min);
+            let d = (p - z).length();
+            assert!(
+                d <= nearest + 1e-3 * (1.0 + nearest),
+                "z {z} floor {floor}: projection at {d}, boundary at {nearest}"
+            );
+            let w = z + Point::new(rng.next() - 0.5, rng.next() - 0.5) * 1e-3;
+            let moved = (project_to_floor(w, floor) - p).length();
+            assert!(
+                moved <= (w - z).length() * (1.0 + 1e-6) + 1e-12,
+                "z {z} floor {floor}: moved {moved} for {}",
+                (w - z).length()
+            );
+        }
     }
 
     #[test]

@@ -40,9 +40,10 @@ struct Element {
     area: f64,
     /// The unwound rotation angle θ.
     theta: f64,
-    /// The stretch S = Q diag(e^l₁, e^l₂) Qᵀ: the angle of Q's first
-    /// column and the logarithms of the eigenvalues.
-    stretch: (f64, [f64; 2]),
+    /// The stretch S = Q diag(e^l₁, e^l₂) Qᵀ: with c, s the cosine and
+    /// sine of the angle of Q's first column, (c², s², cs), and the
+    /// logarithms of the eigenvalues.
+    stretch: ([f64; 3], [f64; 2]),
 }
 
 /// One elimination step: vertex `v`, its pivot, and the multipliers of its
@@ -131,7 +132,14 @@ impl RigidGuide {
                 wk,
                 area: w,
                 theta,
-                stretch: (alpha, [l1.ln(), l2.ln()]),
+                stretch: (
+                    [
+                        alpha.cos().powi(2),
+                        alpha.sin().powi(2),
+                        alpha.cos() * alpha.sin(),
+                    ],
+                    [l1.ln(), l2.ln()],
+                ),
             });
         }
         // Unwind the rotations along the dual tree, parents first.
@@ -178,14 +186,13 @@ impl RigidGuide {
             // A(t) = R(tθ) S^t: the stretch interpolated geometrically, so
             // each triangle's area and its principal stretches move
             // monotonically between the ends' (never ballooning past both).
-            let (alpha, [l1, l2]) = e.stretch;
+            let ([cc, ss, cs], [l1, l2]) = e.stretch;
             let (e1, e2) = ((t * l1).exp(), (t * l2).exp());
-            let (ca, sa) = (alpha.cos(), alpha.sin());
             let m = [
-                [e1 * ca * ca + e2 * sa * sa, (e1 - e2) * ca * sa],
-                [(e1 - e2) * ca * sa, e1 * sa * sa + e2 * ca * ca],
+                [e1 * cc + e2 * ss, (e1 - e2) * cs],
+                [(e1 - e2) * cs, e1 * ss + e2 * cc],
             ];
-            let (co, si) = ((t * e.theta).cos(), (t * e.theta).sin());
+            let (si, co) = (t * e.theta).sin_cos();
             let a = [
                 [co * m[0][0] - si * m[1][0], co * m[0][1] - si * m[1][1]],
                 [si * m[0][0] + co * m[1][0], si * m[0][1] + co * m[1][1]],

@@ -158,14 +158,38 @@ impl Leg {
             failed: 0,
             budget: MAX_KEY_SPLITS.saturating_mul(old_samples.len()),
         };
+        let total_area = area_and_centroid(&old_keys[0], &tris).0.abs();
         for i in 1..old_samples.len() {
-            self.split(
-                (old_samples[i - 1], &old_keys[i - 1]),
-                (old_samples[i], &old_keys[i]),
-                &tris,
-                tol,
-                &mut out,
+            let (a, b) = (
+                (old_samples[i - 1], old_keys[i - 1].as_slice()),
+                (old_samples[i], old_keys[i].as_slice()),
             );
+            // A segment whose neighbours show the path bending far less
+            // than `tol` there, whose chord keeps the area and which is
+            // certified is kept without laying out the path's midpoint.
+            let bend = [
+                i.checked_sub(2).map(|h| (h, i - 1, i)),
+                (i + 1 < old_samples.len()).then_some((i - 1, i, i + 1)),
+            ]
+            .into_iter()
+            .flatten()
+            .map(|(h, j, k)| {
+                let (s, p) = (&old_samples, &old_keys);
+                midpoint_bend((s[h], &p[h]), (s[j], &p[j]), (s[k], &p[k]), (a.0, b.0))
+            })
+            .fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))));
+            let smooth = bend.is_some_and(|d| d <= 0.5 * tol)
+                && chord_area_loss(a.1, b.1).abs() <= 0.5 * KEY_AREA_TOLERANCE * total_area;
+            if smooth
+                && crate::certify::certify_segment(a.1, b.1, &tris, crate::certify::Player::Exact)
+                    .is_ok_and(|r| r.is_certified())
+            {
+                out.certified.push(true);
+                out.samples.push(b.0);
+                out.keys.push(b.1.to_vec());
+                continue;
+            }
+            self.split(a, b, &tris, tol, &mut out);
         }
         let KeyOut {
             samples,
@@ -240,6 +264,45 @@ impl Leg {
         out.samples.push(b.0);
         out.keys.push(b.1.to_vec());
     }
+}
+
+/// An estimate of how far the path strays from the chord over `seg` (a
+/// parameter interval between two of the three keys `h`, `j`, `k`): the
+/// middle key's distance from the chord of the outer two gives the path's
+/// second derivative (a parabola through the three), and the chord of an
+/// interval of length `l` strays `l²|p''|/8` at its midpoint.
+fn midpoint_bend(
+    h: (f64, &[Point]),
+    j: (f64, &[Point]),
+    k: (f64, &[Point]),
+    seg: (f64, f64),
+) -> f64 {
+    let (h1, h2) = (j.0 - h.0, k.0 - j.0);
+    if !(h1 > 0.0 && h2 > 0.0) {
+        return f64::INFINITY;
+    }
+    let w = h1 / (h1 + h2);
+    let d =
+        h.1.iter()
+            .zip(j.1)
+            .zip(k.1)
+            .map(|((p, q), r)| (*q - p.lerp(*r, w)).length())
+            .fold(0.0f64, f64::max);
+    // d = h1·h2·|p''|/2 for a parabola.
+    let second = 2.0 * d / (h1 * h2);
+    let l = seg.1 - seg.0;
+    l * l * second / 8.0
+}
+
+/// How much total area the chord from `a` to `b` loses at its midpoint
+/// against the mean of its ends' areas: a straight-line motion's signed
+/// area is quadratic in s, and its quadratic coefficient is the signed
+/// area of the polygon of moves `b − a`, a quarter of which is lost at
+/// s = ½.
+fn chord_area_loss(a: &[Point], b: &[Point]) -> f64 {
+    let n = a.len();
+    let d = |i: usize| b[i] - a[i];
+    0.25 * 0.5 * (0..n).map(|i| d(i).perp_dot(d((i + 1) % n))).sum::<f64>()
 }
 
 /// The keys [`Leg::refine_keys`] builds, and its counters.
@@ -775,9 +838,11 @@ fn last_leg(
     // tried only where the straight leg did not win over the hybrid one.
     let rigid = inp.final_path == ThirdVertexPath::Rigid;
     let mut candidates = if rigid {
+        // Straight first: it usually travels least, and the rigid rival is
+        // then given up as soon as it cannot win (same choice, less work).
         vec![
-            ThirdVertexPath::Rigid,
             ThirdVertexPath::Straight,
+            ThirdVertexPath::Rigid,
             ThirdVertexPath::Polar,
             ThirdVertexPath::Hybrid,
             ThirdVertexPath::Angle,
@@ -792,12 +857,12 @@ fn last_leg(
     let mut passed: Option<ThirdVertexPath> = None;
     // Why the requested path failed the exact check, if it did.
     let mut first_failed: Option<String> = None;
-    for (attempt, path) in candidates.drain(..).enumerate() {
+    for path in candidates.drain(..) {
         let rival = best.as_ref().map(|(b, _)| b);
         // The polar path is for windings that straight lines cut across;
-        // where the straight leg beat the hybrid one there is none.
+        // where the straight leg beat its rival (hybrid, or rigid) there is
+        // none.
         if compete
-            && !rigid
             && path == ThirdVertexPath::Polar
             && rival.is_some_and(|r| r.plan_path() == ThirdVertexPath::Straight)
         {
@@ -856,7 +921,7 @@ fn last_leg(
                 }
             }
             Err(w) => {
-                if attempt == 0 {
+                if path == inp.final_path {
                     first_failed = Some(w.clone());
                 }
                 why = w;

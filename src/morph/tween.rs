@@ -48,6 +48,14 @@ pub struct Keyframe {
     pub triangles: Vec<[u32; 3]>,
 }
 
+/// The unwind below which a rigid morph is raced by the straight one
+/// ([`Tween::new`]): the gate of docs/design.md §7c.
+const KEPT_TURNING: f64 = 0.9;
+
+/// How much farther the straight morph's vertices may travel than the
+/// rigid one's for it to be kept instead ([`Tween::new`]).
+const RACE_TRAVEL: f64 = 1.5;
+
 /// A planned morph from one curve to another: a verified frame at any t.
 ///
 /// # Examples
@@ -96,6 +104,58 @@ impl Tween {
         options: &CurveMorphOptions,
     ) -> Result<Tween, CurveMorphError> {
         options.validate()?;
+        let tween = Self::planned(a, b, options)?;
+        // The rigid path interpolates each triangle's rotation, so a corner
+        // that turns one way on one curve and the other way on the other
+        // passes through straight; where that undoes the overlaps both
+        // curves have (unwind below KEPT_TURNING over the keys,
+        // docs/design.md §7c), the straight path is planned too and kept
+        // if it keeps that turning without its vertices travelling more
+        // than RACE_TRAVEL times as far. One choice per morph: the motion
+        // stays continuous.
+        if options.morph.path == ThirdVertexPath::Rigid {
+            let unwind = tween.key_unwind();
+            if unwind < KEPT_TURNING {
+                let straight =
+                    options.with_morph(options.morph.with_path(ThirdVertexPath::Straight));
+                if let Ok(other) = Self::planned(a, b, &straight)
+                    && other.key_unwind() >= KEPT_TURNING
+                    && other.staged.mean_travel() <= RACE_TRAVEL * tween.staged.mean_travel()
+                {
+                    return Ok(other);
+                }
+            }
+        }
+        Ok(tween)
+    }
+
+    /// The least total absolute turning over the keys of the side used,
+    /// divided by the smaller of its two ends' (the unwind of §7c on the
+    /// keys).
+    fn key_unwind(&self) -> f64 {
+        let turning = crate::frames::total_absolute_turning;
+        let legs = &self.staged.legs;
+        let (Some(first), Some(last)) = (
+            legs.first().and_then(|l| l.keys.first()),
+            legs.last().and_then(|l| l.keys.last()),
+        ) else {
+            return 1.0;
+        };
+        let ends = turning(first).min(turning(last));
+        let least = legs
+            .iter()
+            .flat_map(|l| &l.keys)
+            .map(|k| turning(k))
+            .fold(f64::INFINITY, f64::min);
+        if ends > 0.0 { least / ends } else { 1.0 }
+    }
+
+    /// Plans the morph with exactly the options given.
+    fn planned(
+        a: &[Point],
+        b: &[Point],
+        options: &CurveMorphOptions,
+    ) -> Result<Tween, CurveMorphError> {
         let (prepared, mut sides) = plan(a, b, options)?;
         let mut fallbacks = prepared.fallbacks.clone();
         let n = prepared.a.len();

@@ -377,7 +377,7 @@ pub fn animated_svg_keys(
         })
         .collect();
     let (values, key_times) = if shapes.len() == 1 {
-        (vec![shapes[0].as_str(); 2].join(";"), "0;1".to_string())
+        ([shapes[0].as_str(); 2].join(";"), "0;1".to_string())
     } else {
         (shapes.join(";"), key_times.join(";"))
     };

@@ -691,6 +691,19 @@ pub(crate) fn parse_size(s: &str) -> Result<(u32, u32), String> {
     Ok((num(w)?, num(h)?))
 }
 
+/// Parses `--key-tolerance`: a fraction of the diagonal above 0 and at
+/// most [`immerse::morph::MAX_KEY_TOLERANCE`].
+fn key_tolerance(text: &str) -> Result<f64, String> {
+    let v: f64 = text.trim().parse().map_err(|_| {
+        format!("'{text}' is not a number; give a fraction of the diagonal such as 0.0025")
+    })?;
+    immerse::morph::CurveMorphOptions::DEFAULT
+        .with_key_tolerance(v)
+        .validate()
+        .map_err(|e| e.to_string())?;
+    Ok(v)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -791,17 +804,4 @@ mod tests {
         assert!(parse_size("0x480").is_err());
         assert!(parse_size("640").is_err());
     }
-}
-
-/// Parses `--key-tolerance`: a fraction of the diagonal above 0 and at
-/// most [`immerse::morph::MAX_KEY_TOLERANCE`].
-fn key_tolerance(text: &str) -> Result<f64, String> {
-    let v: f64 = text.trim().parse().map_err(|_| {
-        format!("'{text}' is not a number; give a fraction of the diagonal such as 0.0025")
-    })?;
-    immerse::morph::CurveMorphOptions::DEFAULT
-        .with_key_tolerance(v)
-        .validate()
-        .map_err(|e| e.to_string())?;
-    Ok(v)
 }

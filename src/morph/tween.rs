@@ -886,28 +886,50 @@ fn merge_keys(leg: &mut Leg, tol: f64) {
         return;
     }
     let tris = leg.plan.triangles().to_vec();
-    let (keys, samples) = (&leg.keys, &leg.samples);
+    let view: &Leg = leg;
+    let (keys, samples) = (&view.keys, &view.samples);
     let joins = |i: usize, j: usize| -> bool {
         let (a, b) = (&keys[i], &keys[j]);
         let span = samples[j] - samples[i];
         if span.is_nan() || span <= 0.0 {
             return false;
         }
+        // Every skipped key, and the path halfway between each two keys.
         let close = (i + 1..j).all(|k| {
-            let w = (samples[k] - samples[i]) / span;
+            let mid = 0.5 * (samples[k - 1] + samples[k]);
+            let halfway = view.plan.positions(mid, view.path);
+            [(samples[k], keys[k].as_slice()), (mid, halfway.as_slice())]
+                .into_iter()
+                .all(|(sk, on)| {
+                    let w = (sk - samples[i]) / span;
+                    let chord: Vec<Point> = a.iter().zip(b).map(|(p, q)| p.lerp(*q, w)).collect();
+                    let near = chord.iter().zip(on).all(|(c, p)| (*c - *p).length() <= tol);
+                    near && {
+                        let (on_path, on_chord) = (
+                            area_and_centroid(on, &tris).0,
+                            area_and_centroid(&chord, &tris).0,
+                        );
+                        (on_chord - on_path).abs() <= KEY_AREA_TOLERANCE * on_path.abs()
+                    }
+                })
+        }) && {
+            // And halfway through the last key interval.
+            let mid = 0.5 * (samples[j - 1] + samples[j]);
+            let on = view.plan.positions(mid, view.path);
+            let w = (mid - samples[i]) / span;
             let chord: Vec<Point> = a.iter().zip(b).map(|(p, q)| p.lerp(*q, w)).collect();
-            let near = chord
+            chord
                 .iter()
-                .zip(&keys[k])
-                .all(|(c, p)| (*c - *p).length() <= tol);
-            near && {
-                let (on_path, on_chord) = (
-                    area_and_centroid(&keys[k], &tris).0,
-                    area_and_centroid(&chord, &tris).0,
-                );
-                (on_chord - on_path).abs() <= KEY_AREA_TOLERANCE * on_path.abs()
-            }
-        });
+                .zip(&on)
+                .all(|(c, p)| (*c - *p).length() <= tol)
+                && {
+                    let (on_path, on_chord) = (
+                        area_and_centroid(&on, &tris).0,
+                        area_and_centroid(&chord, &tris).0,
+                    );
+                    (on_chord - on_path).abs() <= KEY_AREA_TOLERANCE * on_path.abs()
+                }
+        };
         close
             && crate::certify::certify_segment(a, b, &tris, crate::certify::Player::Exact)
                 .is_ok_and(|r| r.is_certified())

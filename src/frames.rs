@@ -16,7 +16,7 @@ pub struct Frame {
     pub triangles: Vec<[u32; 3]>,
 }
 
-fn ser_points<S: serde::Serializer>(points: &[Point], s: S) -> Result<S::Ok, S::Error> {
+pub(crate) fn ser_points<S: serde::Serializer>(points: &[Point], s: S) -> Result<S::Ok, S::Error> {
     use serde::ser::SerializeSeq;
     let mut seq = s.serialize_seq(Some(points.len()))?;
     for p in points {

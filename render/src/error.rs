@@ -54,6 +54,19 @@ pub enum RenderError {
         /// Index of the point.
         index: u32,
     },
+    /// Keyframe times that are not finite, strictly increasing frame
+    /// positions from 0 to the last frame, one per shape.
+    #[error(
+        "keyframe {key}: time {time} is not a frame position after the previous key's and at most the last frame ({last}); give one strictly increasing time per shape"
+    )]
+    KeyTime {
+        /// The key.
+        key: usize,
+        /// Its time.
+        time: f64,
+        /// The last frame.
+        last: usize,
+    },
     /// A sequence writer was given no frames.
     #[error("no frames to write; give at least one frame")]
     NoFrames,

@@ -23,14 +23,17 @@
 //! the animated SVG), with one path and no masks or mattes. This needs an
 //! opaque background, which the background rectangle provides.
 //!
-//! **Keyframes.** Coordinates are pixels of the shared [`View`] (y down),
-//! rounded to 1/100 pixel. A keyframe is kept only where needed: the
-//! keyframes are chosen greedily so that linear interpolation between two
-//! consecutive keyframes puts every vertex of every frame in between within
-//! [`LOTTIE_TOLERANCE_PX`] of its true position. Where consecutive frames
-//! have different vertex counts (which a path cannot interpolate), the
-//! earlier keyframe holds (`h` 1). Triangles, wireframe, spine and markers
-//! are not drawn.
+//! **Keyframes.** [`lottie_keys`] writes exactly the shapes it is given,
+//! at their times (frame positions, possibly fractional), with linear
+//! interpolation in between (`"i"` and `"o"` on the diagonal: no easing,
+//! no overshoot); coordinates are pixels of the given [`View`] (y down),
+//! written with [`Keys::digits`] decimals or in full (`f64`) precision.
+//! immerse gives it the keys of a certified animation and certifies the
+//! written document before it is kept (docs/design.md §12). Where
+//! consecutive keys have different vertex counts (which a path cannot
+//! interpolate), the earlier keyframe holds (`h` 1). [`lottie`] writes
+//! every frame as a key. Triangles, wireframe, spine and markers are not
+//! drawn.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -38,20 +41,93 @@ use std::path::Path;
 use crate::output::{check_fps, onion};
 use crate::{Frame, Loop, Output, RenderError, Rgba, Style, View, write_atomic};
 
-/// How far, in pixels, an interpolated vertex may be from its true position
-/// in any frame before another keyframe is written.
-pub const LOTTIE_TOLERANCE_PX: f64 = 1.0;
+/// Shapes written as keyframes by [`lottie_keys`] and
+/// [`crate::animated_svg_keys`]: `shapes[i]` at frame position
+/// `times[i]`, in an animation of `frames` frames (0 to `frames − 1`).
+#[derive(Clone, Copy, Debug)]
+pub struct Keys<'a> {
+    /// The shapes; each one's outline is drawn.
+    pub shapes: &'a [Frame],
+    /// Their frame positions: finite, strictly increasing, the first 0
+    /// and the last `frames − 1`.
+    pub times: &'a [f64],
+    /// Frames of the whole animation.
+    pub frames: usize,
+    /// World to pixels.
+    pub view: View,
+    /// Decimals of every written coordinate; `None` for full `f64`
+    /// precision (the shortest decimal that reads back bit for bit).
+    pub digits: Option<u32>,
+}
 
-/// Coordinates are written to 1/100 pixel: the keyframe reduction works on
-/// the rounded positions with the tolerance lowered by this much, so the
-/// played vertices stay within [`LOTTIE_TOLERANCE_PX`] of the exact ones.
-const ROUNDING_PX: f64 = 0.01;
+impl Keys<'_> {
+    /// Checks the shapes and their times.
+    pub(crate) fn check(&self) -> Result<(), RenderError> {
+        if self.shapes.is_empty() || self.frames == 0 {
+            return Err(RenderError::NoFrames);
+        }
+        let last = self.frames - 1;
+        let bad = |key: usize, time: f64| RenderError::KeyTime { key, time, last };
+        if self.times.len() != self.shapes.len() {
+            return Err(bad(self.times.len().min(self.shapes.len()), f64::NAN));
+        }
+        for (i, &t) in self.times.iter().enumerate() {
+            let after = i == 0 || t > self.times[i - 1];
+            if !(t.is_finite() && after && t >= 0.0 && t <= last as f64) {
+                return Err(bad(i, t));
+            }
+        }
+        for (i, f) in self.shapes.iter().enumerate() {
+            f.check_indices().map_err(|e| e.in_frame(i))?;
+            if f.outline.is_empty() {
+                return Err(RenderError::EmptyOutline { frame: i });
+            }
+        }
+        Ok(())
+    }
 
-/// A number with at most two decimals and no trailing zeros.
+    /// The outline of shape `i` in pixels, rounded as written.
+    pub(crate) fn pixel_outline(&self, i: usize) -> Result<Vec<[f64; 2]>, RenderError> {
+        pixel_outline(&self.shapes[i], &self.view, self.digits).map_err(|e| e.in_frame(i))
+    }
+}
+
+/// The outline of `f` in pixels, rounded to `digits` decimals.
+fn pixel_outline(
+    f: &Frame,
+    view: &View,
+    digits: Option<u32>,
+) -> Result<Vec<[f64; 2]>, RenderError> {
+    f.outline
+        .iter()
+        .map(|&k| {
+            let [x, y] = view.to_pixel(f.points[k as usize]);
+            if x.is_finite() && y.is_finite() {
+                Ok([round_to(x, digits), round_to(y, digits)])
+            } else {
+                Err(RenderError::NonFinitePoint { index: k })
+            }
+        })
+        .collect()
+}
+
+/// `v` rounded to `digits` decimals (unchanged for `None`), without `-0`.
+pub(crate) fn round_to(v: f64, digits: Option<u32>) -> f64 {
+    let r = match digits {
+        Some(d) => {
+            let scale = 10f64.powi(d.min(15) as i32);
+            let r = (v * scale).round() / scale;
+            if r.is_finite() { r } else { v }
+        }
+        None => v,
+    };
+    if r == 0.0 { 0.0 } else { r }
+}
+
+/// A number as written: the shortest decimal that reads back as `v`.
 fn num(out: &mut String, v: f64) {
-    let r = (v * 100.0).round() / 100.0;
-    let r = if r == 0.0 { 0.0 } else { r };
-    let _ = write!(out, "{r}");
+    let v = if v == 0.0 { 0.0 } else { v };
+    let _ = write!(out, "{v}");
 }
 
 /// A colour as Lottie's `[r, g, b, a]` in 0..1.
@@ -111,66 +187,15 @@ fn fill(name: &str, c: Rgba, opacity: f64, r: u8) -> String {
     )
 }
 
-/// The indices of the keyframes among `paths` (always the first and the
-/// last): greedily the farthest frame such that linear interpolation from
-/// the previous keyframe reproduces every frame in between within
-/// `tolerance` (largest vertex distance). A change of vertex count ends a
-/// span: the frame before the change becomes a keyframe.
-pub(crate) fn keyframes(paths: &[Vec<[f64; 2]>], tolerance: f64) -> Vec<usize> {
-    let n = paths.len();
-    if n == 0 {
-        return Vec::new();
-    }
-    let mut keys = vec![0];
-    let mut i = 0;
-    while i + 1 < n {
-        // The farthest j > i such that the span i..=j is reproduced.
-        let mut j = i + 1;
-        while j + 1 < n && span_ok(paths, i, j + 1, tolerance) {
-            j += 1;
-        }
-        keys.push(j);
-        i = j;
-    }
-    keys
-}
-
-/// Whether interpolating from `paths[i]` to `paths[j]` reproduces every
-/// frame strictly between within `tolerance`.
-fn span_ok(paths: &[Vec<[f64; 2]>], i: usize, j: usize, tolerance: f64) -> bool {
-    let (a, b) = (&paths[i], &paths[j]);
-    if (i..=j).any(|m| paths[m].len() != a.len()) {
-        return false;
-    }
-    let t2 = tolerance * tolerance;
-    (i + 1..j).all(|m| {
-        let s = (m - i) as f64 / (j - i) as f64;
-        paths[m].iter().zip(a.iter().zip(b)).all(|(p, (p0, p1))| {
-            let x = p0[0] + s * (p1[0] - p0[0]) - p[0];
-            let y = p0[1] + s * (p1[1] - p0[1]) - p[1];
-            x * x + y * y <= t2
-        })
-    })
-}
-
-/// Rounds to 1/100 as written.
-fn round2(v: f64) -> f64 {
-    let r = (v * 100.0).round() / 100.0;
-    if r == 0.0 { 0.0 } else { r }
-}
-
 /// One Lottie JSON document animating the outlines of `frames` at `fps`
 /// frames per second, `style.width` × `style.height` pixels, in the played
-/// order of `looping` ([`Loop::sequence`]). The whole animation is one
-/// shape layer (see the module docs for its items and how overlap depth is
-/// shaded); Lottie players loop by default, so [`Loop::Once`] and
-/// [`Loop::Loop`] give the same document.
+/// order of `looping` ([`Loop::sequence`]): every played frame is a key
+/// ([`lottie_keys`], full precision). Lottie players loop by default, so
+/// [`Loop::Once`] and [`Loop::Loop`] give the same document.
 ///
 /// # Errors
 ///
-/// [`RenderError::NoFrames`], [`RenderError::BadFps`], a size error,
-/// [`RenderError::EmptyOutline`] for a frame without an outline,
-/// [`RenderError::InFrame`] for a bad index or a non-finite outline point.
+/// As [`lottie_keys`].
 pub fn lottie(
     frames: &[Frame],
     style: &Style,
@@ -180,57 +205,62 @@ pub fn lottie(
     if frames.is_empty() {
         return Err(RenderError::NoFrames);
     }
-    check_fps(fps)?;
-    style.check_size()?;
-    for (i, f) in frames.iter().enumerate() {
-        f.check_indices().map_err(|e| e.in_frame(i))?;
-        if f.outline.is_empty() {
-            return Err(RenderError::EmptyOutline { frame: i });
-        }
-    }
-    let view = View::fit(frames, style);
-    let pixel_outline = |f: &Frame| -> Result<Vec<[f64; 2]>, RenderError> {
-        f.outline
-            .iter()
-            .map(|&k| {
-                let [x, y] = view.to_pixel(f.points[k as usize]);
-                if x.is_finite() && y.is_finite() {
-                    Ok([round2(x), round2(y)])
-                } else {
-                    Err(RenderError::NonFinitePoint { index: k })
-                }
-            })
-            .collect()
-    };
-    let mut outlines = Vec::with_capacity(frames.len());
-    for (i, f) in frames.iter().enumerate() {
-        outlines.push(pixel_outline(f).map_err(|e| e.in_frame(i))?);
-    }
-    let played: Vec<Vec<[f64; 2]>> = looping
+    let played: Vec<Frame> = looping
         .sequence(frames.len())
         .into_iter()
-        .map(|i| outlines[i].clone())
+        .map(|i| frames[i].clone())
         .collect();
-    let keys = keyframes(&played, LOTTIE_TOLERANCE_PX - ROUNDING_PX);
-    let total = played.len();
+    let times: Vec<f64> = (0..played.len()).map(|i| i as f64).collect();
+    let keys = Keys {
+        shapes: &played,
+        times: &times,
+        frames: played.len(),
+        view: View::fit(frames, style),
+        digits: None,
+    };
+    lottie_keys(&keys, style, fps)
+}
+
+/// One Lottie JSON document playing `keys` at `fps` frames per second,
+/// `style.width` × `style.height` pixels: one shape layer (module docs)
+/// whose path has a keyframe per key at its time, interpolated linearly.
+/// With [`Style::onion_skin`], the first and last keys are the ghosts.
+///
+/// # Errors
+///
+/// [`RenderError::NoFrames`], [`RenderError::KeyTime`],
+/// [`RenderError::BadFps`], a size error, [`RenderError::EmptyOutline`] for
+/// a shape without an outline, [`RenderError::InFrame`] for a bad index
+/// or a non-finite outline point.
+pub fn lottie_keys(keys: &Keys<'_>, style: &Style, fps: f64) -> Result<String, RenderError> {
+    keys.check()?;
+    check_fps(fps)?;
+    style.check_size()?;
+    let mut played = Vec::with_capacity(keys.shapes.len());
+    for i in 0..keys.shapes.len() {
+        played.push(keys.pixel_outline(i)?);
+    }
+    let total = keys.frames;
 
     // The animated path.
     let mut shape = String::from("{\"ty\":\"sh\",\"nm\":\"Outline\",\"ks\":");
-    if keys.len() == 1 {
+    if played.len() == 1 {
         shape.push_str("{\"a\":0,\"k\":");
         path_value(&mut shape, &played[0]);
         shape.push('}');
     } else {
         shape.push_str("{\"a\":1,\"k\":[");
-        for (k, &i) in keys.iter().enumerate() {
+        for (k, outline) in played.iter().enumerate() {
             if k > 0 {
                 shape.push(',');
             }
-            let _ = write!(shape, "{{\"t\":{i},\"s\":[");
-            path_value(&mut shape, &played[i]);
+            shape.push_str("{\"t\":");
+            num(&mut shape, keys.times[k]);
+            shape.push_str(",\"s\":[");
+            path_value(&mut shape, outline);
             shape.push(']');
-            if let Some(&next) = keys.get(k + 1) {
-                if played[next].len() != played[i].len() {
+            if let Some(next) = played.get(k + 1) {
+                if next.len() != outline.len() {
                     shape.push_str(",\"h\":1");
                 } else {
                     shape.push_str(",\"i\":{\"x\":1,\"y\":1},\"o\":{\"x\":0,\"y\":0}");
@@ -262,12 +292,12 @@ pub fn lottie(
         curve_items.join(",")
     )];
 
-    let ghosts = onion(frames, style);
+    let ghosts = onion(keys.shapes, style);
     if !ghosts.is_empty() {
         let mut items = Vec::new();
         for (k, g) in ghosts.iter().enumerate() {
             let mut s = format!("{{\"ty\":\"sh\",\"nm\":\"Ghost {k}\",\"ks\":{{\"a\":0,\"k\":");
-            path_value(&mut s, &pixel_outline(g)?);
+            path_value(&mut s, &pixel_outline(g, &keys.view, keys.digits)?);
             s.push_str("}}");
             items.push(s);
         }
@@ -391,58 +421,56 @@ mod tests {
         assert_eq!(bg[0]["s"]["k"], serde_json::json!([320, 200]));
     }
 
-    /// Interpolating the written keyframes reproduces every frame within
-    /// one pixel, and fewer keyframes than frames are written.
+    /// Exactly the keys given are written, at their (fractional) times,
+    /// with the decimals asked for, and linear interpolation.
     #[test]
-    fn keyframe_reduction_stays_within_a_pixel() {
-        let frames = turning_square(121);
+    fn keys_are_written_at_their_times_with_their_digits() {
+        let frames = turning_square(3);
         let style = Style::DEFAULT.with_size(512, 512).with_onion_skin(false);
-        let doc = parse(&lottie(&frames, &style, 30.0, Loop::Loop).unwrap());
-        let keys = doc["layers"][0]["shapes"][0]["it"][0]["ks"]["k"]
-            .as_array()
-            .unwrap()
-            .clone();
-        assert!(
-            keys.len() < 121 && keys.len() > 2,
-            "{} keyframes",
-            keys.len()
-        );
         let view = View::fit(&frames, &style);
-        let at = |k: &Value| -> (f64, Vec<[f64; 2]>) {
-            let v = k["s"][0]["v"].as_array().unwrap();
-            (
-                k["t"].as_f64().unwrap(),
-                v.iter()
-                    .map(|p| [p[0].as_f64().unwrap(), p[1].as_f64().unwrap()])
-                    .collect(),
-            )
-        };
-        let mut worst: f64 = 0.0;
-        for (m, f) in frames.iter().enumerate() {
-            let m = m as f64;
-            let w = keys.windows(2).find(|w| at(&w[1]).0 >= m).unwrap();
-            let ((t0, p0), (t1, p1)) = (at(&w[0]), at(&w[1]));
-            let s = (m - t0) / (t1 - t0);
-            for (k, &i) in f.outline.iter().enumerate() {
-                let exact = view.to_pixel(f.points[i as usize]);
-                let x = p0[k][0] + s * (p1[k][0] - p0[k][0]);
-                let y = p0[k][1] + s * (p1[k][1] - p0[k][1]);
-                worst = worst.max(((x - exact[0]).powi(2) + (y - exact[1]).powi(2)).sqrt());
+        let times = [0.0, 7.25, 20.0];
+        for digits in [Some(2), Some(5), None] {
+            let keys = Keys {
+                shapes: &frames,
+                times: &times,
+                frames: 21,
+                view,
+                digits,
+            };
+            let doc = parse(&lottie_keys(&keys, &style, 30.0).unwrap());
+            assert_eq!(doc["op"], 21);
+            let k = doc["layers"][0]["shapes"][0]["it"][0]["ks"]["k"]
+                .as_array()
+                .unwrap()
+                .clone();
+            assert_eq!(k.len(), 3);
+            for (key, (f, &t)) in k.iter().zip(frames.iter().zip(&times)) {
+                assert_eq!(key["t"].as_f64(), Some(t));
+                let v = key["s"][0]["v"].as_array().unwrap();
+                for (p, &i) in v.iter().zip(&f.outline) {
+                    let exact = view.to_pixel(f.points[i as usize]);
+                    for c in 0..2 {
+                        let written = p[c].as_f64().unwrap();
+                        let want = round_to(exact[c], digits);
+                        assert_eq!(written, want, "digits {digits:?}");
+                    }
+                }
             }
+            assert_eq!(k[0]["i"]["x"], 1);
+            assert_eq!(k[0]["o"]["x"], 0);
         }
-        assert!(worst <= LOTTIE_TOLERANCE_PX, "worst {worst} px");
-        // A straight-line motion needs only its two ends.
-        let line: Vec<Frame> = (0..50)
-            .map(|i| {
-                let d = i as f64;
-                Frame::from_triangles(vec![[d, 0.0], [d + 10.0, 0.0], [d, 10.0]], vec![[0, 1, 2]])
-            })
-            .collect();
-        let doc = parse(&lottie(&line, &style, 30.0, Loop::Once).unwrap());
-        let keys = doc["layers"][0]["shapes"][0]["it"][0]["ks"]["k"]
-            .as_array()
-            .unwrap();
-        assert_eq!(keys.len(), 2);
+        // Times must increase and end at the last frame at most.
+        let bad = Keys {
+            shapes: &frames,
+            times: &[0.0, 3.0, 3.0],
+            frames: 21,
+            view,
+            digits: None,
+        };
+        assert!(matches!(
+            lottie_keys(&bad, &style, 30.0),
+            Err(RenderError::KeyTime { key: 2, .. })
+        ));
     }
 
     #[test]
@@ -453,13 +481,9 @@ mod tests {
             vec![[0, 1, 2], [0, 2, 3]],
         );
         let frames = vec![tri.clone(), tri, quad.clone(), quad];
-        let keys = keyframes(
-            &frames.iter().map(|f| f.points.clone()).collect::<Vec<_>>(),
-            1.0,
-        );
-        assert_eq!(keys, vec![0, 1, 2, 3]);
         let doc = parse(&lottie(&frames, &Style::DEFAULT, 10.0, Loop::Loop).unwrap());
         let k = &doc["layers"][0]["shapes"][0]["it"][0]["ks"]["k"];
+        assert_eq!(k.as_array().unwrap().len(), 4);
         assert_eq!(k[1]["h"], 1);
     }
 

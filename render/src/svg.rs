@@ -23,7 +23,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::output::{check_fps, onion, write_sequence};
-use crate::{Frame, Loop, Output, RenderError, Rgba, Style, View, write_atomic};
+use crate::{Frame, Keys, Loop, Output, RenderError, Rgba, Style, View, write_atomic};
 
 /// The `id` of the background rectangle of every SVG written here.
 pub const BACKGROUND_ID: &str = "immerse-background";
@@ -286,37 +286,69 @@ pub fn write_svg_sequence(
     })
 }
 
-/// One SVG document whose filled outline is animated with SMIL: a single
-/// `<animate attributeName="d">` whose `values` hold the outline of every
-/// played frame ([`Loop::sequence`]), linearly interpolated, `(values - 1) /
-/// fps` seconds long. How overlap is shown is described in the module docs
-/// of this file: the path is filled `nonzero` plus once more where the
-/// winding number is even, so the doubly covered region is darker. With
-/// onion skin on, the first and last outlines are static ghosts.
-/// Triangles, wireframe, spine and markers are not drawn.
+/// An animated SVG of every played frame ([`Loop::sequence`]) as a key
+/// ([`animated_svg_keys`], full precision), `(frames - 1) / fps` seconds
+/// long.
 ///
 /// # Errors
 ///
-/// [`RenderError::NoFrames`], [`RenderError::BadFps`], a size error,
-/// [`RenderError::OutlineMismatch`] unless every frame has an outline of the
-/// same non-zero length, [`RenderError::InFrame`] for a bad index or a
-/// non-finite outline point (reported as [`RenderError::NonFinitePoint`]),
-/// or an output-safety error for `path`.
+/// As [`animated_svg_keys`].
 pub fn animated_svg(
     frames: &[Frame],
     style: &Style,
     fps: f64,
     looping: Loop,
 ) -> Result<String, RenderError> {
-    let Some(first) = frames.first() else {
+    if frames.is_empty() {
         return Err(RenderError::NoFrames);
+    }
+    let played: Vec<Frame> = looping
+        .sequence(frames.len())
+        .into_iter()
+        .map(|i| frames[i].clone())
+        .collect();
+    let times: Vec<f64> = (0..played.len()).map(|i| i as f64).collect();
+    let keys = Keys {
+        shapes: &played,
+        times: &times,
+        frames: played.len(),
+        view: View::fit(frames, style),
+        digits: None,
     };
+    animated_svg_keys(&keys, style, fps, looping)
+}
+
+/// One SVG document whose outline path is animated by an
+/// `<animate attributeName="d">` holding exactly the shapes of `keys`:
+/// `values` are their outlines (pixels of `keys.view`, written with
+/// `keys.digits` decimals or in full precision), `keyTimes` their times
+/// over the last frame, `calcMode="linear"`, `(frames - 1) / fps` seconds
+/// long, repeated unless `looping` is [`Loop::Once`] (the keys are in
+/// played order already). How overlap is shown is described in the
+/// module docs of this file: the path is filled `nonzero` plus once more
+/// where the winding number is even, so the doubly covered region is
+/// darker. With onion skin on, the first and last keys are static ghosts.
+/// Triangles, wireframe, spine and markers are not drawn.
+///
+/// # Errors
+///
+/// [`RenderError::NoFrames`], [`RenderError::KeyTime`],
+/// [`RenderError::BadFps`], a size error, [`RenderError::OutlineMismatch`]
+/// unless every key has an outline of the same non-zero length,
+/// [`RenderError::InFrame`] for a bad index or a non-finite outline point
+/// (reported as [`RenderError::NonFinitePoint`]).
+pub fn animated_svg_keys(
+    keys: &Keys<'_>,
+    style: &Style,
+    fps: f64,
+    looping: Loop,
+) -> Result<String, RenderError> {
+    keys.check()?;
     check_fps(fps)?;
     style.check_size()?;
-    let expected = first.outline.len();
-    for (i, f) in frames.iter().enumerate() {
-        f.check_indices().map_err(|e| e.in_frame(i))?;
-        if f.outline.len() != expected || expected == 0 {
+    let expected = keys.shapes[0].outline.len();
+    for (i, f) in keys.shapes.iter().enumerate() {
+        if f.outline.len() != expected {
             return Err(RenderError::OutlineMismatch {
                 frame: i,
                 expected,
@@ -324,18 +356,31 @@ pub fn animated_svg(
             });
         }
     }
-    let view = View::fit(frames, style);
-    let mut shapes = Vec::with_capacity(frames.len());
-    for (i, f) in frames.iter().enumerate() {
-        let pts = pixel_points(f, &view);
-        if let Some(&bad) = f.outline.iter().find(|&&k| pts[k as usize].is_none()) {
-            return Err(RenderError::NonFinitePoint { index: bad }.in_frame(i));
-        }
-        shapes.push(path_data(&f.outline, &pts, true));
+    let mut shapes = Vec::with_capacity(keys.shapes.len());
+    for i in 0..keys.shapes.len() {
+        shapes.push(outline_data(&keys.pixel_outline(i)?));
     }
-    let order = looping.sequence(frames.len());
-    let values: Vec<&str> = order.iter().map(|&i| shapes[i].as_str()).collect();
-    let dur = (values.len().max(2) - 1) as f64 / fps;
+    let last = (keys.frames.max(2) - 1) as f64;
+    let dur = last / fps;
+    let key_times: Vec<String> = keys
+        .times
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| {
+            // The ends exactly 0 and 1, as SMIL asks.
+            let x = if i + 1 == keys.times.len() {
+                1.0
+            } else {
+                t / last
+            };
+            format!("{x}")
+        })
+        .collect();
+    let (values, key_times) = if shapes.len() == 1 {
+        ([shapes[0].as_str(); 2].join(";"), "0;1".to_string())
+    } else {
+        (shapes.join(";"), key_times.join(";"))
+    };
     let repeat = if looping == Loop::Once {
         "1"
     } else {
@@ -348,12 +393,11 @@ pub fn animated_svg(
     let _ = write!(
         out,
         "<defs>\n<path id=\"{OUTLINE_ID}\" d=\"{}\">\n<animate attributeName=\"d\" dur=\"{dur}s\" \
-         repeatCount=\"{repeat}\" fill=\"freeze\" calcMode=\"linear\" values=\"{}\"/>\n</path>\n\
+         repeatCount=\"{repeat}\" fill=\"freeze\" calcMode=\"linear\" keyTimes=\"{key_times}\" values=\"{values}\"/>\n</path>\n\
          <mask id=\"even\" maskUnits=\"userSpaceOnUse\" x=\"0\" y=\"0\" width=\"{w}\" height=\"{h}\">\n\
          <use xlink:href=\"#{OUTLINE_ID}\" fill=\"white\" fill-rule=\"nonzero\"/>\n\
          <use xlink:href=\"#{OUTLINE_ID}\" fill=\"black\" fill-rule=\"evenodd\"/>\n</mask>\n</defs>\n",
         shapes[0],
-        values.join(";")
     );
     let fill = format!(
         "fill=\"{}\" fill-opacity=\"{:.3}\" stroke=\"none\"",
@@ -368,7 +412,7 @@ pub fn animated_svg(
         out,
         "<use xlink:href=\"#{OUTLINE_ID}\" {fill} fill-rule=\"nonzero\" mask=\"url(#even)\"/>"
     );
-    onion_paths(&mut out, &onion(frames, style), &view, style);
+    onion_paths(&mut out, &onion(keys.shapes, style), &keys.view, style);
     if style.outline_width > 0.0 {
         let _ = write!(out, "<use xlink:href=\"#{OUTLINE_ID}\"");
         stroke_attrs(&mut out, style.outline, style.outline_width);
@@ -376,6 +420,18 @@ pub fn animated_svg(
     }
     out.push_str("</svg>\n");
     Ok(out)
+}
+
+/// Closed path data through pixel points written in full (they are
+/// rounded already).
+fn outline_data(pts: &[[f64; 2]]) -> String {
+    let mut d = String::new();
+    for (k, p) in pts.iter().enumerate() {
+        d.push(if k == 0 { 'M' } else { 'L' });
+        let _ = write!(d, "{} {}", p[0], p[1]);
+    }
+    d.push('Z');
+    d
 }
 
 /// Writes [`animated_svg`] to `path` with [`write_atomic`].

@@ -45,7 +45,20 @@ pub struct CurveMorphOptions {
     /// less kept; measured on `curves/motion-pairs.list`, see
     /// docs/motion.md).
     pub correspondence: Correspondence,
+    /// How far the straight segment between two keyframes may stray from
+    /// the planned path, as a fraction of the larger end's bounding-box
+    /// diagonal (docs/design.md §12): finite, above 0 and at most
+    /// [`MAX_KEY_TOLERANCE`]. Default [`KEY_TOLERANCE`] (0.25 %).
+    pub key_tolerance: f64,
 }
+
+/// The default [`CurveMorphOptions::key_tolerance`]: 0.25 % of the
+/// diagonal.
+pub const KEY_TOLERANCE: f64 = 0.0025;
+
+/// The largest [`CurveMorphOptions::key_tolerance`] accepted: 10 % of the
+/// diagonal.
+pub const MAX_KEY_TOLERANCE: f64 = 0.1;
 
 impl CurveMorphOptions {
     /// The defaults.
@@ -55,7 +68,30 @@ impl CurveMorphOptions {
         counts: Counts::Insert,
         correspondence: Correspondence::Best,
         intermediate: Intermediate::Target,
+        key_tolerance: KEY_TOLERANCE,
     };
+
+    /// Sets the key tolerance (a fraction of the diagonal; checked when the
+    /// morph is planned).
+    pub fn with_key_tolerance(mut self, tolerance: f64) -> Self {
+        self.key_tolerance = tolerance;
+        self
+    }
+
+    /// Checks the options that are numbers.
+    ///
+    /// # Errors
+    ///
+    /// [`CurveMorphError::KeyTolerance`] for a key tolerance that is not
+    /// finite, not above 0 or above [`MAX_KEY_TOLERANCE`].
+    pub fn validate(&self) -> Result<(), CurveMorphError> {
+        let k = self.key_tolerance;
+        if k.is_finite() && k > 0.0 && k <= MAX_KEY_TOLERANCE {
+            Ok(())
+        } else {
+            Err(CurveMorphError::KeyTolerance(k))
+        }
+    }
 
     /// Sets the triangulation quality.
     pub fn with_quality(mut self, quality: Quality) -> Self {
@@ -144,6 +180,12 @@ pub enum CurveMorphError {
         /// The value given.
         value: f64,
     },
+    /// A key tolerance that is not a fraction of the diagonal above 0 and
+    /// at most [`MAX_KEY_TOLERANCE`].
+    #[error(
+        "key tolerance {0} is not a fraction of the diagonal above 0 and at most 0.1; give e.g. 0.0025 (0.25 %)"
+    )]
+    KeyTolerance(f64),
     /// The morph failed.
     #[error(transparent)]
     Morph(#[from] MorphError),

@@ -16,13 +16,14 @@ pub use compatible::{
     area_and_centroid, lay_out, lay_out_rooted,
 };
 pub use curves::{
-    Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, MorphReport, Side,
-    choose_shift, equal_counts, morph_curves, shape_cost_per_shift, triangulate_side,
+    Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, KEY_TOLERANCE,
+    MAX_KEY_TOLERANCE, MorphReport, Side, choose_shift, equal_counts, morph_curves,
+    shape_cost_per_shift, triangulate_side,
 };
 pub use paths::ThirdVertexPath;
 pub use staged::{LEG_STEP, SCHEDULE_STEP, Staged, disk_for};
 pub use target::{TARGET_FAN_MARGIN, TARGET_MIN_ANGLE};
-pub use tween::Tween;
+pub use tween::{Keyframe, Tween, timed_keyframes};
 
 use crate::frames::{Fallback, Frame, Morph};
 use crate::tree::RootChoice;

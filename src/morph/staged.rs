@@ -134,24 +134,6 @@ impl Leg {
         self.travel.last().copied().unwrap_or(0.0)
     }
 
-    /// The key interval at `d` ∈ [0, length] of the leg's travel and the
-    /// fraction of the way through it: `(i, w)` for the straight segment
-    /// from key `i` to key `i + 1`.
-    pub(crate) fn key_at(&self, d: f64) -> (usize, f64) {
-        let c = &self.travel;
-        if c.len() < 2 || d <= 0.0 {
-            return (0, 0.0);
-        }
-        let i = c.partition_point(|&x| x < d).clamp(1, c.len() - 1);
-        let (c0, c1) = (c[i - 1], c[i]);
-        let w = if c1 > c0 {
-            ((d - c0) / (c1 - c0)).clamp(0.0, 1.0)
-        } else {
-            1.0
-        };
-        (i - 1, w)
-    }
-
     /// Adds keys until the straight segment between every two consecutive
     /// keys keeps within `tol` of the path at its midpoint (each vertex),
     /// keeps the path's total area there within [`KEY_AREA_TOLERANCE`], and
@@ -337,7 +319,7 @@ struct KeyOut {
 
 /// How much the total area of a straight segment's midpoint may differ
 /// from the path's there, relative to the path's (1 %).
-const KEY_AREA_TOLERANCE: f64 = 0.01;
+pub(crate) const KEY_AREA_TOLERANCE: f64 = 0.01;
 
 /// Most splits of a leg's segments per checked sample: a bound on the
 /// work and the keys where a path cannot be followed closely (a segment

@@ -3,22 +3,50 @@
 //! [`Tween::new`] does all the planning of [`super::morph_curves`]: equal
 //! counts, triangulations, correspondence, both staged sides and the
 //! choice between them, every leg walked and checked exactly at its
-//! samples, and the timing table (cumulative largest vertex move over the
-//! samples). [`Tween::frame`] then costs one layout and one exact check,
-//! O(n), and gives the same frame for the same t however it is called.
+//! samples, the keys (split until every straight segment between two keys
+//! is certified, docs/design.md §13) and the pacing table.
+//! [`Tween::frame`] then costs a binary search, one linear interpolation
+//! between two keys and one exact check, O(n), and gives the same frame
+//! for the same t however it is called. [`Tween::keyframes`] lists the
+//! keys themselves: the animation is their piecewise-linear
+//! interpolation, which is what Lottie, SVG and the playground play.
+//!
+//! **Pacing.** t is a fraction of the *pace*, summed over the segments
+//! between consecutive keys. A segment whose vertices move m on average
+//! and M at most has pace `max(m, M / c)`: frames at equal steps of pace
+//! move the mean vertex at most one unit per unit of pace and any vertex
+//! at most c, and where neither bound binds both speeds are even. The
+//! ratio c is chosen per tween, among the segments' own M / m, so that
+//! the largest per-frame mean move and the largest per-frame single
+//! vertex move stay closest to their medians (within 1.5× and 2×, the
+//! aims of docs/design.md §12).
 
+use super::area_and_centroid;
 use super::curves::{CurveMorphError, CurveMorphOptions, MorphReport, Side, plan};
-use super::staged::{Leg, recovery_paths};
+use super::staged::{KEY_AREA_TOLERANCE, Leg, moves, recovery_paths};
 use super::{MorphError, Staged, ThirdVertexPath};
 use crate::correspond::shift_triangles;
 use crate::frames::{Fallback, Frame, Morph};
 use crate::geom::Point;
 use crate::immersion::check_triangles;
 
-/// How far the straight segment between two keys may stray from the
-/// planned path at its midpoint, as a fraction of the larger end's
-/// bounding-box diagonal (0.25 %).
-pub(crate) const KEY_TOLERANCE: f64 = 0.0025;
+/// One key of a morph's animation: the shape at fraction `t` of the pace
+/// and the triangulation of the segment that follows it (for the last
+/// key, the one of the segment before it, valid at it). Between two keys
+/// every vertex moves on a straight line at constant speed; a flip is one
+/// key, written with the triangulation after the flip (docs/design.md §12
+/// and §13).
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Keyframe {
+    /// Where the key is, in [0, 1]: 0 for the first, 1 for the last,
+    /// strictly increasing.
+    pub t: f64,
+    /// The shape (vertex `i` is vertex `i` of every frame).
+    #[serde(serialize_with = "crate::frames::ser_points")]
+    pub points: Vec<Point>,
+    /// The triangulation of the segment from this key to the next.
+    pub triangles: Vec<[u32; 3]>,
+}
 
 /// The unwind below which a rigid morph is raced by the straight one
 /// ([`Tween::new`]): the gate of docs/design.md §7c.
@@ -53,7 +81,9 @@ pub struct Tween {
     /// True when the target's side is used (frames run backwards on it).
     reversed: bool,
     shift: usize,
-    /// Travel at the start of each leg, and in all.
+    /// Per leg, the cumulative pace at each key (0 at its first key).
+    pace: Vec<Vec<f64>>,
+    /// Pace at the start of each leg, and in all.
     offsets: Vec<f64>,
     total: f64,
     report: MorphReport,
@@ -73,6 +103,7 @@ impl Tween {
         b: &[Point],
         options: &CurveMorphOptions,
     ) -> Result<Tween, CurveMorphError> {
+        options.validate()?;
         let tween = Self::planned(a, b, options)?;
         // The rigid path interpolates each triangle's rotation, so a corner
         // that turns one way on one curve and the other way on the other
@@ -257,9 +288,10 @@ impl Tween {
         };
         {
             use rayon::prelude::*;
-            let tol = KEY_TOLERANCE * diagonal;
+            let tol = options.key_tolerance * diagonal;
             staged.legs.par_iter_mut().for_each(|leg| {
                 leg.refine_keys(tol);
+                merge_keys(leg, tol);
             });
         }
         fallbacks.extend(staged.fallbacks.iter().cloned());
@@ -280,11 +312,12 @@ impl Tween {
                 ),
             ));
         }
+        let pace = pace_tables(&staged.legs);
         let mut offsets = Vec::with_capacity(staged.legs.len());
         let mut total = 0.0;
-        for leg in &staged.legs {
+        for p in &pace {
             offsets.push(total);
-            total += leg.length();
+            total += p.last().copied().unwrap_or(0.0);
         }
         let report = MorphReport {
             n,
@@ -304,6 +337,7 @@ impl Tween {
             staged,
             reversed: !sides.use_a,
             shift: sides.k,
+            pace,
             offsets,
             total,
             report,
@@ -320,10 +354,118 @@ impl Tween {
         self.n
     }
 
-    /// Total travel: the sum over the checked samples of the largest
-    /// vertex move (the unit of the frame timing).
+    /// Total pace: the sum over the segments between keys of
+    /// `max(m, M / c)` (module docs), a length; the unit of the frame
+    /// timing and of a sequence's sharing of frames.
     pub fn path_length(&self) -> f64 {
         self.total
+    }
+
+    /// The number of keys [`Tween::keyframes`] lists (2 for a valid
+    /// straight-line morph).
+    pub fn key_count(&self) -> usize {
+        let legs = &self.staged.legs;
+        1 + legs
+            .iter()
+            .map(|l| l.keys.len().saturating_sub(1))
+            .sum::<usize>()
+    }
+
+    /// Whether every segment between two keys is certified an immersion
+    /// for every s in exact arithmetic (docs/design.md §13). Where one is
+    /// not, frames on it are checked one by one and fall back to the path.
+    pub fn is_certified(&self) -> bool {
+        self.staged
+            .legs
+            .iter()
+            .all(|l| l.certified.iter().all(|&c| c))
+    }
+
+    /// The keys of the animation, in order of t (module docs,
+    /// [`Keyframe`]), in the labels of the frames (the first curve's). A
+    /// flip between two legs is written once, with the triangulation of
+    /// the segment that follows it. Interpolating two consecutive keys
+    /// linearly at fraction w of the way gives the frame at the t that
+    /// fraction w of the way between theirs (up to rounding).
+    pub fn keyframes(&self) -> Vec<Keyframe> {
+        let legs = &self.staged.legs;
+        // In the side's order: (fraction, points, triangles of the
+        // segment before, triangles of the segment after).
+        type SideKey<'a> = (f64, &'a [Point], &'a [[u32; 3]], &'a [[u32; 3]]);
+        let mut side: Vec<SideKey<'_>> = Vec::with_capacity(self.key_count());
+        let count = self.key_count().max(2);
+        for (i, leg) in legs.iter().enumerate() {
+            let tris = leg.plan.triangles();
+            for (k, p) in leg.keys.iter().enumerate() {
+                if k == 0 && i > 0 {
+                    // The flip key: the previous leg's last key is the
+                    // same shape; this one starts the following segment.
+                    if let Some(last) = side.last_mut() {
+                        last.1 = p;
+                        last.3 = tris;
+                    }
+                    continue;
+                }
+                let d = self.offsets[i] + self.pace[i][k];
+                let f = if self.total > 0.0 {
+                    (d / self.total).clamp(0.0, 1.0)
+                } else {
+                    side.len() as f64 / (count - 1) as f64
+                };
+                let before = side.last().map_or(tris, |s| s.3);
+                side.push((f, p, before, tris));
+            }
+        }
+        if let Some(first) = side.first_mut() {
+            first.0 = 0.0;
+        }
+        if let Some(last) = side.last_mut() {
+            last.0 = 1.0;
+        }
+        if !self.reversed {
+            return side
+                .into_iter()
+                .map(|(t, p, _, after)| Keyframe {
+                    t,
+                    points: p.to_vec(),
+                    triangles: after.to_vec(),
+                })
+                .collect();
+        }
+        let (n, k) = (self.n, self.shift);
+        side.into_iter()
+            .rev()
+            .map(|(f, p, before, _)| Keyframe {
+                t: 1.0 - f,
+                points: (0..n).map(|i| p[(i + k) % n]).collect(),
+                triangles: shift_triangles(n, before, k),
+            })
+            .collect()
+    }
+
+    /// The largest vertex move per unit of pace over the first frame step
+    /// and over the last, for frame steps of `h` (a fraction of the pace):
+    /// the largest move from t = 0 to t = h and from 1 − h to 1, over
+    /// `h ×` [`Tween::path_length`]. How fast the fastest vertex leaves
+    /// and arrives when frames are evenly paced; sequences match these at
+    /// their keys. 1 where nothing moves.
+    pub fn end_rates(&self, h: f64) -> (f64, f64) {
+        let h = if h.is_finite() {
+            h.clamp(1e-9, 1.0)
+        } else {
+            1.0
+        };
+        let unit = h * self.total;
+        let rate = |a: f64, b: f64| -> f64 {
+            match (self.frame(a), self.frame(b)) {
+                (Ok(p), Ok(q)) if unit > 0.0 => {
+                    let m = moves(&p.points, &q.points).0;
+                    if m > 0.0 { m / unit } else { 1.0 }
+                }
+                _ => 1.0,
+            }
+        };
+        (rate(0.0, h), rate(1.0 - h, 1.0))
     }
 
     /// The leg, its key interval and the fraction of the way through it
@@ -347,12 +489,12 @@ impl Tween {
             .clamp(1, legs.len())
             - 1;
         let leg = &legs[i];
-        let (k, w) = leg.key_at(d - self.offsets[i]);
+        let (k, w) = key_at(&self.pace[i], d - self.offsets[i]);
         (leg, k, w)
     }
 
-    /// The frame at fraction `t` ∈ [0, 1] of the total vertex travel
-    /// (0 = the source, exactly; 1 = the target, exactly), checked
+    /// The frame at fraction `t` ∈ [0, 1] of the pace (module docs; 0 =
+    /// the source, exactly; 1 = the target, exactly), checked
     /// exactly. Vertex `i` is source vertex `i` (after equalising counts);
     /// at t = 1 it is target vertex `i + shift`.
     ///
@@ -505,4 +647,335 @@ impl Tween {
             frames,
         })
     }
+}
+
+/// The key interval at `d` ∈ [0, last] of the cumulative table `c` and the
+/// fraction of the way through it: `(i, w)` for the straight segment from
+/// key `i` to key `i + 1`.
+fn key_at(c: &[f64], d: f64) -> (usize, f64) {
+    if c.len() < 2 || d <= 0.0 {
+        return (0, 0.0);
+    }
+    let i = c.partition_point(|&x| x < d).clamp(1, c.len() - 1);
+    let (c0, c1) = (c[i - 1], c[i]);
+    let w = if c1 > c0 {
+        ((d - c0) / (c1 - c0)).clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
+    (i - 1, w)
+}
+
+/// The pace tables of `legs` (module docs): per leg, the cumulative pace
+/// at each key.
+fn pace_tables(legs: &[Leg]) -> Vec<Vec<f64>> {
+    // Mean and largest vertex move of every segment between keys.
+    let per_leg: Vec<Vec<(f64, f64)>> = legs
+        .iter()
+        .map(|l| {
+            l.keys
+                .windows(2)
+                .map(|w| {
+                    let (max, mean) = moves(&w[0], &w[1]);
+                    (mean, max)
+                })
+                .collect()
+        })
+        .collect();
+    let all: Vec<(f64, f64)> = per_leg.iter().flatten().copied().collect();
+    let c = pace_ratio(&all);
+    per_leg
+        .iter()
+        .map(|segs| {
+            let mut table = Vec::with_capacity(segs.len() + 1);
+            let mut acc = 0.0;
+            table.push(acc);
+            for &(m, big) in segs {
+                acc += pace(m, big, c);
+                table.push(acc);
+            }
+            table
+        })
+        .collect()
+}
+
+/// The pace of a segment whose vertices move `mean` on average and `max`
+/// at most, for the ratio `c`.
+fn pace(mean: f64, max: f64, c: f64) -> f64 {
+    mean.max(max / c)
+}
+
+/// The ratio c of [`pace`] for segments `(mean, max)`: among the
+/// segments' own ratios max / mean, the one whose even frames keep the
+/// largest per-frame mean move and largest per-frame single-vertex move
+/// closest to their medians (each measured against its aim, 1.5 and 2).
+fn pace_ratio(segs: &[(f64, f64)]) -> f64 {
+    let moving: Vec<(f64, f64)> = segs
+        .iter()
+        .copied()
+        .filter(|&(m, big)| m > 0.0 && big > 0.0 && m.is_finite() && big.is_finite())
+        .collect();
+    if moving.is_empty() {
+        return 1.0;
+    }
+    let mut ratios: Vec<f64> = moving.iter().map(|&(m, big)| big / m).collect();
+    ratios.sort_by(f64::total_cmp);
+    ratios.dedup();
+    // At most 64 candidates, spread over the sorted ratios.
+    let stride = ratios.len().div_ceil(64).max(1);
+    let mut candidates: Vec<f64> = ratios.iter().copied().step_by(stride).collect();
+    candidates.push(ratios[ratios.len() - 1]);
+    let mut best = (f64::INFINITY, candidates[0]);
+    for &c in &candidates {
+        let score = pace_score(&moving, c);
+        if score < best.0 {
+            best = (score, c);
+        }
+    }
+    best.1
+}
+
+/// How far the even frames of pace ratio `c` are from the aims: the larger
+/// of (largest / median per-frame mean move) / 1.5 and (largest / median
+/// per-frame largest vertex move) / 2, medians weighted by the frames each
+/// segment gets (its pace).
+fn pace_score(segs: &[(f64, f64)], c: f64) -> f64 {
+    let mut means = Vec::with_capacity(segs.len());
+    let mut maxes = Vec::with_capacity(segs.len());
+    for &(m, big) in segs {
+        let d = pace(m, big, c);
+        means.push((m / d, d));
+        maxes.push((big / d, d));
+    }
+    let spread = |v: &mut Vec<(f64, f64)>| -> f64 {
+        v.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let total: f64 = v.iter().map(|x| x.1).sum();
+        let mut acc = 0.0;
+        let mut median = v[v.len() - 1].0;
+        for &(x, w) in v.iter() {
+            acc += w;
+            if acc >= 0.5 * total {
+                median = x;
+                break;
+            }
+        }
+        v[v.len() - 1].0 / median
+    };
+    (spread(&mut means) / 1.5).max(spread(&mut maxes) / 2.0)
+}
+
+/// The keys an output writes when frame `i` shows the animation of `keys`
+/// at `times[i]` (a fraction of the pace, as [`Tween::frame`] takes it):
+/// each key's `t` becomes the frame, possibly fractional, at which the
+/// frames pass it, found linearly between the two frames around it; the
+/// first and last frames are keys, and so is every frame that repeats
+/// its neighbour's time (a hold) or, with `every_frame`, every frame (for
+/// eased or played-back timing, whose speed changes inside a segment).
+/// The shapes between two written keys are then the animation's own: a
+/// part of one of its straight segments, played at constant speed
+/// (docs/design.md §12). Times may go back and forth (a ping-pong or an
+/// easing that overshoots); every key crossed is written.
+///
+/// Returns keys with strictly increasing `t` in frames, each with the
+/// triangulation of the animation's segment that the written segment
+/// after it lies on. Expects `keys` as [`Tween::keyframes`] gives them
+/// and `times` in [0, 1].
+pub fn timed_keyframes(keys: &[Keyframe], times: &[f64], every_frame: bool) -> Vec<Keyframe> {
+    let (Some(first_key), Some(last_key)) = (keys.first(), keys.last()) else {
+        return Vec::new();
+    };
+    if times.is_empty() {
+        return Vec::new();
+    }
+    // The shape at animation time u, and the segment u lies in (the one
+    // after it at a key).
+    let segment_of = |u: f64| -> usize {
+        keys.partition_point(|k| k.t <= u)
+            .saturating_sub(1)
+            .min(keys.len().saturating_sub(2))
+    };
+    let shape_at = |u: f64| -> Vec<Point> {
+        if u <= first_key.t {
+            return first_key.points.clone();
+        }
+        if u >= last_key.t {
+            return last_key.points.clone();
+        }
+        let j = segment_of(u);
+        let (a, b) = (&keys[j], &keys[j + 1]);
+        if u == a.t {
+            return a.points.clone();
+        }
+        let w = if b.t > a.t {
+            (u - a.t) / (b.t - a.t)
+        } else {
+            1.0
+        };
+        a.points
+            .iter()
+            .zip(&b.points)
+            .map(|(p, q)| p.lerp(*q, w))
+            .collect()
+    };
+    // (frame position, animation time, a key's index when exactly a key)
+    let mut out: Vec<(f64, f64, Option<usize>)> = Vec::new();
+    let last = times.len() - 1;
+    for (i, &u) in times.iter().enumerate() {
+        let held = (i > 0 && times[i - 1] == u) || (i < last && times[i + 1] == u);
+        if i == 0 || i == last || held || every_frame {
+            let exact = keys.iter().position(|k| k.t == u);
+            out.push((i as f64, u, exact));
+        }
+        if let Some(&v) = times.get(i + 1)
+            && v != u
+        {
+            // Keys strictly between u and v, in the order they are met.
+            let (lo, hi) = (u.min(v), u.max(v));
+            let from = keys.partition_point(|k| k.t <= lo);
+            let to = keys.partition_point(|k| k.t < hi);
+            let mut crossed: Vec<usize> = (from..to).collect();
+            if v < u {
+                crossed.reverse();
+            }
+            for j in crossed {
+                let x = i as f64 + (keys[j].t - u) / (v - u);
+                if x > i as f64 && x < (i + 1) as f64 {
+                    out.push((x, keys[j].t, Some(j)));
+                }
+            }
+        }
+    }
+    let count = out.len();
+    (0..count)
+        .map(|m| {
+            let (x, u, exact) = out[m];
+            // The segment the written segment after this key lies on (for
+            // the last key, the one before it).
+            let (a, b) = if m + 1 < count {
+                (u, out[m + 1].1)
+            } else if m > 0 {
+                (out[m - 1].1, u)
+            } else {
+                (u, u)
+            };
+            let seg = if a == b {
+                segment_of(a)
+            } else {
+                segment_of(0.5 * (a + b))
+            };
+            Keyframe {
+                t: x,
+                points: exact.map_or_else(|| shape_at(u), |j| keys[j].points.clone()),
+                triangles: keys[seg.min(keys.len() - 1)].triangles.clone(),
+            }
+        })
+        .collect()
+}
+
+/// Drops the keys of `leg` that a straight segment does not need: greedily
+/// from each kept key, the farthest later key such that the straight
+/// segment to it passes within `tol` of every key in between (each vertex,
+/// at its own parameter along the leg), keeps their total area within
+/// [`KEY_AREA_TOLERANCE`], and is certified an immersion for every s in
+/// exact arithmetic (docs/design.md §13). So a straight-line morph keeps
+/// its two ends. Farther keys are tried at doubling distances, then by
+/// bisection: O(k log k) segment checks for k keys.
+fn merge_keys(leg: &mut Leg, tol: f64) {
+    let count = leg.keys.len();
+    if count < 3 || leg.certified.len() + 1 != count {
+        return;
+    }
+    let tris = leg.plan.triangles().to_vec();
+    let view: &Leg = leg;
+    let (keys, samples) = (&view.keys, &view.samples);
+    let joins = |i: usize, j: usize| -> bool {
+        let (a, b) = (&keys[i], &keys[j]);
+        let span = samples[j] - samples[i];
+        if span.is_nan() || span <= 0.0 {
+            return false;
+        }
+        // Every skipped key, and the path halfway between each two keys.
+        let close = (i + 1..j).all(|k| {
+            let mid = 0.5 * (samples[k - 1] + samples[k]);
+            let halfway = view.plan.positions(mid, view.path);
+            [(samples[k], keys[k].as_slice()), (mid, halfway.as_slice())]
+                .into_iter()
+                .all(|(sk, on)| {
+                    let w = (sk - samples[i]) / span;
+                    let chord: Vec<Point> = a.iter().zip(b).map(|(p, q)| p.lerp(*q, w)).collect();
+                    let near = chord.iter().zip(on).all(|(c, p)| (*c - *p).length() <= tol);
+                    near && {
+                        let (on_path, on_chord) = (
+                            area_and_centroid(on, &tris).0,
+                            area_and_centroid(&chord, &tris).0,
+                        );
+                        (on_chord - on_path).abs() <= KEY_AREA_TOLERANCE * on_path.abs()
+                    }
+                })
+        }) && {
+            // And halfway through the last key interval.
+            let mid = 0.5 * (samples[j - 1] + samples[j]);
+            let on = view.plan.positions(mid, view.path);
+            let w = (mid - samples[i]) / span;
+            let chord: Vec<Point> = a.iter().zip(b).map(|(p, q)| p.lerp(*q, w)).collect();
+            chord
+                .iter()
+                .zip(&on)
+                .all(|(c, p)| (*c - *p).length() <= tol)
+                && {
+                    let (on_path, on_chord) = (
+                        area_and_centroid(&on, &tris).0,
+                        area_and_centroid(&chord, &tris).0,
+                    );
+                    (on_chord - on_path).abs() <= KEY_AREA_TOLERANCE * on_path.abs()
+                }
+        };
+        close
+            && crate::certify::certify_segment(a, b, &tris, crate::certify::Player::Exact)
+                .is_ok_and(|r| r.is_certified())
+    };
+    let mut kept = vec![0usize];
+    let mut i = 0;
+    while i + 1 < count {
+        // The farthest j with joins(i, j), j = i + 1 always kept.
+        let (mut good, mut step) = (i + 1, 1usize);
+        let mut bad = count;
+        while good + step < count {
+            if joins(i, good + step) {
+                good += step;
+                step *= 2;
+            } else {
+                bad = good + step;
+                break;
+            }
+        }
+        if bad == count && good + 1 < count && joins(i, count - 1) {
+            good = count - 1;
+        }
+        // Bisect between the last join and the first failure.
+        let mut hi = bad.min(count);
+        while hi > good + 1 {
+            let mid = good + (hi - good) / 2;
+            if joins(i, mid) {
+                good = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        kept.push(good);
+        i = good;
+    }
+    if kept.len() == count {
+        return;
+    }
+    let certified: Vec<bool> = kept
+        .windows(2)
+        .map(|w| w[1] > w[0] + 1 || leg.certified[w[0]])
+        .collect();
+    leg.keys = kept
+        .iter()
+        .map(|&k| std::mem::take(&mut leg.keys[k]))
+        .collect();
+    leg.samples = kept.iter().map(|&k| leg.samples[k]).collect();
+    leg.certified = certified;
 }

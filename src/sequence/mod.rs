@@ -34,8 +34,8 @@ use crate::frames::{Fallback, Frame, Morph};
 use crate::geom::Point;
 use crate::immersion::NotSelfOverlapping;
 use crate::morph::{
-    Correspondence, Counts, CurveMorphError, CurveMorphOptions, MorphError, Side, ThirdVertexPath,
-    Tween,
+    Correspondence, Counts, CurveMorphError, CurveMorphOptions, Keyframe, MorphError, Side,
+    ThirdVertexPath, Tween,
 };
 use rayon::prelude::*;
 
@@ -377,9 +377,82 @@ impl Sequence {
         &self.tweens[s]
     }
 
-    /// The travel of each segment ([`Tween::path_length`]).
+    /// The pace of each segment ([`Tween::path_length`]).
     pub fn path_lengths(&self) -> Vec<f64> {
         self.tweens.iter().map(Tween::path_length).collect()
+    }
+
+    /// The keys of the whole sequence (every segment's
+    /// [`Tween::keyframes`], in the sequence's vertex numbering), with `t`
+    /// the fraction of the whole sequence's pace, as [`Sequence::frames`]
+    /// gives frames' `t`. A key of the sequence is written once, with the
+    /// triangulation of the segment that follows it. Times strictly
+    /// increase; a segment that does not move adds no key.
+    pub fn keyframes(&self) -> Vec<Keyframe> {
+        let lengths = self.path_lengths();
+        let total: f64 = lengths.iter().sum();
+        let segments = self.tweens.len();
+        let mut out: Vec<Keyframe> = Vec::new();
+        let mut start = 0.0;
+        for (s, tween) in self.tweens.iter().enumerate() {
+            let (n, o) = (self.n, self.offsets[s]);
+            for (k, key) in tween.keyframes().into_iter().enumerate() {
+                let t = if total > 0.0 {
+                    ((start + key.t * lengths[s]) / total).clamp(0.0, 1.0)
+                } else {
+                    (s as f64 + key.t) / segments as f64
+                };
+                let key = Keyframe {
+                    t,
+                    points: (0..n).map(|i| key.points[(i + o) % n]).collect(),
+                    triangles: shift_triangles(n, &key.triangles, o),
+                };
+                match out.last_mut() {
+                    // The key between two segments: once, with the
+                    // triangulation of the segment after it.
+                    Some(last) if k == 0 => {
+                        last.triangles = key.triangles;
+                    }
+                    Some(last) if key.t <= last.t => {
+                        // A segment too short to move the time: keep the
+                        // later shape.
+                        *last = Keyframe { t: last.t, ..key };
+                    }
+                    _ => out.push(key),
+                }
+            }
+            start += lengths[s];
+        }
+        if let Some(last) = out.last_mut() {
+            last.t = 1.0;
+        }
+        out
+    }
+
+    /// The time of every frame of `schedule` on the axis of
+    /// [`Sequence::keyframes`] (the fraction of the whole pace).
+    pub fn frame_times(&self, schedule: &Schedule) -> Vec<f64> {
+        let lengths = self.path_lengths();
+        let total: f64 = lengths.iter().sum();
+        let mut start = Vec::with_capacity(lengths.len());
+        let mut acc = 0.0;
+        for l in &lengths {
+            start.push(acc);
+            acc += l;
+        }
+        let segments = lengths.len().max(1);
+        schedule
+            .samples
+            .iter()
+            .map(|sample| {
+                let s = sample.segment;
+                if total > 0.0 {
+                    ((start[s] + sample.t * lengths[s]) / total).clamp(0.0, 1.0)
+                } else {
+                    (s as f64 + sample.t) / segments as f64
+                }
+            })
+            .collect()
     }
 
     /// The frame at fraction `t` of segment `s`'s travel, checked exactly,
@@ -413,7 +486,33 @@ impl Sequence {
     /// [`SequenceError::Timing`] naming the key or setting that cannot be
     /// met.
     pub fn schedule(&self, timing: &Timing) -> Result<Schedule, SequenceError> {
-        timing::schedule(&self.path_lengths(), timing, &self.names)
+        // The speed at a key is matched on the frames' own steps: the
+        // rates over a first guess of the step, then over the steps
+        // found, twice.
+        let lengths = self.path_lengths();
+        let rates = |h: &(dyn Fn(usize) -> f64 + Sync)| -> Vec<(f64, f64)> {
+            self.tweens
+                .par_iter()
+                .enumerate()
+                .map(|(j, t)| t.end_rates(h(j)))
+                .collect()
+        };
+        let mut schedule = timing::schedule(
+            &lengths,
+            &rates(&|_| timing::RATE_WINDOW),
+            timing,
+            &self.names,
+        )?;
+        for _ in 0..2 {
+            let steps = schedule.steps.clone();
+            schedule = timing::schedule(
+                &lengths,
+                &rates(&|j| 1.0 / steps[j].max(1) as f64),
+                timing,
+                &self.names,
+            )?;
+        }
+        Ok(schedule)
     }
 
     /// Every frame of `schedule`, each checked exactly, in parallel. A

@@ -35,6 +35,10 @@ pub const STOP_SLOPE: f64 = 0.05;
 /// duration or total fixes.
 pub const DEFAULT_SECONDS_PER_SEGMENT: f64 = 2.0;
 
+/// The frame step, as a share of a segment's pace, over which its speed
+/// at a key is first measured (see [`crate::morph::Tween::end_rates`]).
+pub const RATE_WINDOW: f64 = 0.02;
+
 /// Most frames a sequence may have.
 pub const MAX_FRAMES: usize = 100_000;
 
@@ -233,9 +237,12 @@ fn frames_of(seconds: f64, fps: f64) -> usize {
     (seconds * fps).round() as usize
 }
 
-/// Places the frames for segments of travel `lengths`.
+/// Places the frames for segments of pace `lengths`, whose largest vertex
+/// moves per unit of pace at their start and end are `rates` (1 where
+/// unknown).
 pub(super) fn schedule(
     lengths: &[f64],
+    rates: &[(f64, f64)],
     timing: &Timing,
     names: &[String],
 ) -> Result<Schedule, SequenceError> {
@@ -388,10 +395,18 @@ pub(super) fn schedule(
         };
         breaks[j] = why;
     }
+    // The fastest vertex leaves key j as fast as it arrives: pace per
+    // step times the easing's slope times the segment's rate there.
+    let rate = |j: usize, end: bool| -> f64 {
+        let r = rates.get(j).map_or(1.0, |r| if end { r.1 } else { r.0 });
+        if r.is_finite() && r > 0.0 { r } else { 1.0 }
+    };
     let mut speed = vec![1.0f64; m - 1];
     for j in 1..m - 1 {
         if breaks[j].is_none() {
-            speed[j] = (speed[j - 1] * slopes[j - 1].1 / slopes[j].0).clamp(1e-3, 1e3);
+            speed[j] = (speed[j - 1] * slopes[j - 1].1 * rate(j - 1, true)
+                / (slopes[j].0 * rate(j, false)))
+            .clamp(1e-3, 1e3);
         }
     }
     // Steps per segment, run by run.
@@ -532,7 +547,7 @@ mod tests {
     #[test]
     fn free_segments_share_frames_by_travel() {
         let t = Timing::new(4).with_frames(Some(61));
-        let s = schedule(&[1.0, 2.0, 3.0], &t, &names(4)).unwrap();
+        let s = schedule(&[1.0, 2.0, 3.0], &[], &t, &names(4)).unwrap();
         assert_eq!(s.samples.len(), 61);
         assert_eq!(s.steps, vec![10, 20, 30]);
         assert_eq!(s.key_frames, vec![0, 10, 30, 60]);
@@ -547,7 +562,7 @@ mod tests {
         t.keys[1].hold = 0.5;
         t.keys[1].duration = Some(1.0);
         t.keys[3].time = Some(6.0);
-        let s = schedule(&[1.0, 1.0, 1.0], &t, &names(4)).unwrap();
+        let s = schedule(&[1.0, 1.0, 1.0], &[], &t, &names(4)).unwrap();
         // Key 4 is at frame 60; key 2 holds 5 frames and segment 2 takes
         // 10: segments 1 and 3 share the other 45 by travel.
         assert_eq!(s.steps[1], 10);
@@ -562,14 +577,14 @@ mod tests {
     fn bad_timings_name_the_key() {
         let mut t = Timing::new(3);
         t.keys[1].duration = Some(-1.0);
-        let e = schedule(&[1.0, 1.0], &t, &names(3)).unwrap_err();
+        let e = schedule(&[1.0, 1.0], &[], &t, &names(3)).unwrap_err();
         assert_eq!(
             e.to_string(),
             "key 2 (k2): duration -1 is not a number of seconds above 0"
         );
         let mut t = Timing::new(3);
         t.keys[2].time = Some(0.01);
-        let e = schedule(&[1.0, 1.0], &t, &names(3)).unwrap_err();
+        let e = schedule(&[1.0, 1.0], &[], &t, &names(3)).unwrap_err();
         assert!(
             e.to_string()
                 .starts_with("key 3 (k3): at frame 0 it leaves too few frames"),
@@ -584,11 +599,11 @@ mod tests {
         let mut t = Timing::new(3).with_frames(Some(201));
         t.keys[0].easing = Ease::new(|x: f64| 1.0 - (1.0 - x) * (1.0 - x)); // slope 2 at 0, 0 at 1
         t.keys[1].easing = Ease::new(|x: f64| x * x); // slope 0 at 0
-        let s = schedule(&[1.0, 1.0], &t, &names(3)).unwrap();
+        let s = schedule(&[1.0, 1.0], &[], &t, &names(3)).unwrap();
         assert!(s.breaks[1].is_some());
         let mut t = Timing::new(3).with_frames(Some(201));
         t.keys[0].easing = Ease::new(|x: f64| x * x); // ends at slope 2
-        let s = schedule(&[1.0, 1.0], &t, &names(3)).unwrap();
+        let s = schedule(&[1.0, 1.0], &[], &t, &names(3)).unwrap();
         assert!(s.breaks[1].is_none());
         // Speed at the end of 1: 2 / s0; at the start of 2: 1 / s1.
         let (a, b) = (2.0 / s.steps[0] as f64, 1.0 / s.steps[1] as f64);

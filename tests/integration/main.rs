@@ -11,6 +11,7 @@ mod certify_cli;
 mod cli;
 mod curves;
 mod immersion;
+mod keys;
 mod morph;
 mod outputs;
 mod pairs;

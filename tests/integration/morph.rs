@@ -11,7 +11,7 @@ use immerse::immersion::check;
 use immerse::morph::{CurveMorphOptions, Tween, morph_curves};
 
 #[path = "../common/pairs.rs"]
-mod pairs;
+pub(crate) mod pairs;
 use pairs::reference_pairs;
 
 fn load(name: &str) -> Curve {

@@ -533,7 +533,7 @@ fn no_reversal_notice_for_svg_shapes() {
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     assert_eq!(
         stderr(&out),
-        "immerse: 2 frames computed and verified; pass --json FILE or -o PATH to keep them\n"
+        "immerse: 2 keyframes (every segment between them certified), 2 frames computed and verified; pass --json FILE or -o PATH to keep them\n"
     );
     let cw = curve("spiral-strip-540deg-n120-clockwise.json");
     let out = immerse_in(

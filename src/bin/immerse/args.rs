@@ -205,6 +205,11 @@ pub(crate) struct AnimateArgs {
     /// How each triangle's third vertex travels.
     #[arg(long, value_enum, default_value_t = PathArg::Rigid)]
     pub(crate) path: PathArg,
+    /// How far the straight segment between two keyframes may stray from
+    /// the planned motion, as a fraction of the shape's diagonal (above 0,
+    /// at most 0.1); smaller gives more keys.
+    #[arg(long, value_name = "FRACTION", default_value_t = immerse::morph::KEY_TOLERANCE, value_parser = key_tolerance, allow_negative_numbers = true)]
+    pub(crate) key_tolerance: f64,
     /// Triangulation quality of each key.
     #[arg(long, value_enum, default_value_t = QualityArg::Delaunay)]
     pub(crate) quality: QualityArg,
@@ -262,6 +267,11 @@ pub(crate) struct ServeArgs {
     /// Open the page in the default browser.
     #[arg(long)]
     pub(crate) open: bool,
+    /// Every morph's key tolerance: how far the straight segment between two keyframes may stray from
+    /// the planned motion, as a fraction of the shape's diagonal (above 0,
+    /// at most 0.1); smaller gives more keys.
+    #[arg(long, value_name = "FRACTION", default_value_t = immerse::morph::KEY_TOLERANCE, value_parser = key_tolerance, allow_negative_numbers = true)]
+    pub(crate) key_tolerance: f64,
     /// What the server bounds (README, "Playground": each limit and its answer).
     #[command(flatten)]
     pub(crate) limits: ServeLimits,
@@ -581,6 +591,11 @@ pub(crate) struct MorphArgs {
     /// How each triangle's third vertex travels.
     #[arg(long, value_enum, default_value_t = PathArg::Rigid)]
     pub(crate) path: PathArg,
+    /// How far the straight segment between two keyframes may stray from
+    /// the planned motion, as a fraction of the shape's diagonal (above 0,
+    /// at most 0.1); smaller gives more keys.
+    #[arg(long, value_name = "FRACTION", default_value_t = immerse::morph::KEY_TOLERANCE, value_parser = key_tolerance, allow_negative_numbers = true)]
+    pub(crate) key_tolerance: f64,
     /// Triangulation quality of each curve.
     #[arg(long, value_enum, default_value_t = QualityArg::Delaunay)]
     pub(crate) quality: QualityArg,
@@ -674,6 +689,19 @@ pub(crate) fn parse_size(s: &str) -> Result<(u32, u32), String> {
             })
     };
     Ok((num(w)?, num(h)?))
+}
+
+/// Parses `--key-tolerance`: a fraction of the diagonal above 0 and at
+/// most [`immerse::morph::MAX_KEY_TOLERANCE`].
+fn key_tolerance(text: &str) -> Result<f64, String> {
+    let v: f64 = text.trim().parse().map_err(|_| {
+        format!("'{text}' is not a number; give a fraction of the diagonal such as 0.0025")
+    })?;
+    immerse::morph::CurveMorphOptions::DEFAULT
+        .with_key_tolerance(v)
+        .validate()
+        .map_err(|e| e.to_string())?;
+    Ok(v)
 }
 
 #[cfg(test)]

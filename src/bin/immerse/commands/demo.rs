@@ -53,6 +53,7 @@ pub(crate) fn run(args: &DemoArgs) -> anyhow::Result<Outcome> {
     let image = |format| super::ImageOutput { format, columns: 0 };
     write_frames(
         &frames,
+        None,
         dir,
         image(FormatArg::Png),
         &style,
@@ -64,6 +65,7 @@ pub(crate) fn run(args: &DemoArgs) -> anyhow::Result<Outcome> {
     let gif = dir.join("demo.gif");
     write_frames(
         &frames,
+        None,
         &gif,
         image(FormatArg::Gif),
         &style,

@@ -156,6 +156,7 @@ pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
             .collect();
         write_frames(
             &plain,
+            None,
             out,
             images,
             &style(args),

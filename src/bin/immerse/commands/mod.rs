@@ -5,8 +5,9 @@ mod animate;
 mod certify;
 mod check;
 mod demo;
+pub(crate) mod keyed;
 mod mesh_morph;
-mod morph;
+pub(crate) mod morph;
 mod serve;
 mod triangulate;
 

@@ -1,5 +1,6 @@
 //! `immerse morph`: frames from one curve to another.
 
+use super::keyed::{self, Played};
 use super::progress_bar;
 use crate::Outcome;
 use crate::args::{CorrespondenceArg, CountsArg, FormatArg, IntermediateArg, MorphArgs, PathArg};
@@ -7,8 +8,8 @@ use crate::output;
 use anyhow::Context;
 use immerse::frames::{Morph, metrics};
 use immerse::morph::{
-    Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, MorphOptions,
-    ThirdVertexPath, morph_curves,
+    Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, Keyframe,
+    MorphOptions, ThirdVertexPath, Tween,
 };
 use immerse::{Curve, Quality};
 use immerse_render as render;
@@ -111,16 +112,22 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
             IntermediateArg::Target => Intermediate::Target,
             IntermediateArg::Disk => Intermediate::Disk,
         })
-        .with_morph(MorphOptions::DEFAULT.with_path(args.path.into()));
+        .with_morph(MorphOptions::DEFAULT.with_path(args.path.into()))
+        .with_key_tolerance(args.key_tolerance);
     let busy = super::spinner(
         &format!("triangulating, matching and morphing {n} vertices"),
         args.quiet || n < 300,
     );
     clock.lap("read");
-    let result = morph_curves(&src.points, &dst.points, &times, &options);
+    let result = Tween::new(&src.points, &dst.points, &options).and_then(|tween| {
+        let morph = tween.morph(&times)?;
+        let mut report = tween.report().clone();
+        report.fallbacks.clone_from(&morph.fallbacks);
+        Ok((report, morph, tween))
+    });
     clock.lap("morph");
     busy.finish_and_clear();
-    let (report, morph) = match result {
+    let (report, morph, tween) = match result {
         Ok(done) => done,
         Err(CurveMorphError::NotSelfOverlapping { side, reason }) if !reason.is_answer() => {
             let file = match side {
@@ -147,12 +154,19 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
             output::note(&format!("{f} (every frame is an immersion)"));
         }
     }
+    let keyframes = tween.keyframes();
     if let Some(json) = &args.json {
-        super::write_json(json, &morph, false, args.force)?;
+        super::write_json(json, &WithKeys::new(&morph, &keyframes), false, args.force)?;
     }
     clock.lap("json");
     if let (Some(out), Some(images)) = (&args.output, images) {
-        write_images(args, out, images, &morph)?;
+        let played = Played::new(
+            &keyframes,
+            &times,
+            looping(args),
+            easing != render::Easing::Linear,
+        );
+        write_images(args, out, images, &morph, &played)?;
     }
     clock.lap("images");
     clock.report();
@@ -211,10 +225,21 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
             m.unwind,
         ))?;
     }
-    if args.json.is_none() && args.output.is_none() && !args.metrics && !args.quiet {
+    if !args.quiet {
         output::note(&format!(
-            "{} frames computed and verified; pass --json FILE or -o PATH to keep them",
-            morph.frames.len()
+            "{} keyframes ({}), {} frames computed and verified{}",
+            keyframes.len(),
+            if tween.is_certified() {
+                "every segment between them certified"
+            } else {
+                "some segments not certified: frames there checked one by one"
+            },
+            morph.frames.len(),
+            if args.json.is_none() && args.output.is_none() && !args.metrics {
+                "; pass --json FILE or -o PATH to keep them"
+            } else {
+                ""
+            }
         ));
     }
     Ok(Outcome::Success)
@@ -262,28 +287,54 @@ fn style(args: &MorphArgs) -> render::Style {
         .with_onion_skin(args.onion)
 }
 
+/// How `immerse morph`'s animations play.
+fn looping(args: &MorphArgs) -> render::Loop {
+    if args.ping_pong {
+        render::Loop::PingPong
+    } else if args.once {
+        render::Loop::Once
+    } else {
+        render::Loop::Loop
+    }
+}
+
+/// A morph's JSON (`frames` and the rest, [`Morph`]) with its keys:
+/// `"key_count"` and `"keyframes": [{"t", "points", "triangles"}, …]`.
+#[derive(serde::Serialize)]
+pub(crate) struct WithKeys<'a, T: serde::Serialize> {
+    #[serde(flatten)]
+    morph: &'a T,
+    key_count: usize,
+    keyframes: &'a [Keyframe],
+}
+
+impl<'a, T: serde::Serialize> WithKeys<'a, T> {
+    pub(crate) fn new(morph: &'a T, keyframes: &'a [Keyframe]) -> Self {
+        WithKeys {
+            morph,
+            key_count: keyframes.len(),
+            keyframes,
+        }
+    }
+}
+
 /// Renders the frames to `out` in the chosen format.
 fn write_images(
     args: &MorphArgs,
     out: &Path,
     images: super::ImageOutput,
     morph: &Morph,
+    played: &Played,
 ) -> anyhow::Result<()> {
     let frames = super::render_frames(&morph.frames);
-    let looping = if args.ping_pong {
-        render::Loop::PingPong
-    } else if args.once {
-        render::Loop::Once
-    } else {
-        render::Loop::Loop
-    };
     write_frames(
         &frames,
+        Some(played),
         out,
         images,
         &style(args),
         args.fps,
-        looping,
+        looping(args),
         args.force,
         args.quiet,
     )
@@ -296,6 +347,7 @@ fn write_images(
 )]
 pub(crate) fn write_frames(
     frames: &[render::Frame],
+    keys: Option<&Played>,
     out: &Path,
     images: super::ImageOutput,
     style: &render::Style,
@@ -319,6 +371,21 @@ pub(crate) fn write_frames(
             render::write_svg_sequence(frames, out, style, &opts, &progress)?;
         }
         FormatArg::Gif => render::write_gif(frames, out, style, fps, looping, &opts, &progress)?,
+        FormatArg::AnimatedSvg | FormatArg::Lottie if keys.is_some() => {
+            let kind = if images.format == FormatArg::Lottie {
+                keyed::Kind::Lottie
+            } else {
+                keyed::Kind::AnimatedSvg
+            };
+            let played = keys.expect("matched on is_some");
+            let view = render::View::fit(frames, style);
+            let written = keyed::write(kind, played, view, style, fps, looping)
+                .with_context(|| format!("-o {}", out.display()))?;
+            keyed::save(&written, out, force)?;
+            if !quiet {
+                output::note(&keyed::describe(kind, &written, written.text.len()));
+            }
+        }
         FormatArg::AnimatedSvg => {
             render::write_animated_svg(frames, out, style, fps, looping, &opts)?;
         }

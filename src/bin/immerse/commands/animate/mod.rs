@@ -3,6 +3,7 @@
 
 mod timeline;
 
+use super::keyed::Played;
 use super::morph::write_frames;
 use crate::Outcome;
 use crate::args::{AnimateArgs, FormatArg, IntermediateArg};
@@ -10,7 +11,7 @@ use crate::output;
 use anyhow::Context;
 use immerse::curve::SvgShapes;
 use immerse::frames::Morph;
-use immerse::morph::{CurveMorphOptions, Intermediate, MorphOptions};
+use immerse::morph::{CurveMorphOptions, Intermediate, Keyframe, MorphOptions};
 use immerse::sequence::{
     Ease, Hint, HintAt, Key, KeySpeed, KeyTiming, Schedule, Sequence, SequenceError,
     SequenceOptions, Timing, key_speeds,
@@ -108,7 +109,8 @@ pub(crate) fn run(args: &AnimateArgs) -> anyhow::Result<Outcome> {
                 IntermediateArg::Target => Intermediate::Target,
                 IntermediateArg::Disk => Intermediate::Disk,
             })
-            .with_morph(MorphOptions::DEFAULT.with_path(args.path.into())),
+            .with_morph(MorphOptions::DEFAULT.with_path(args.path.into()))
+            .with_key_tolerance(args.key_tolerance),
     );
     let biggest = keys.iter().map(|k| k.curve.len()).max().unwrap_or(0);
     let busy = super::spinner(
@@ -167,9 +169,13 @@ pub(crate) fn run(args: &AnimateArgs) -> anyhow::Result<Outcome> {
             output::note(&format!("{f} (every frame is an immersion)"));
         }
     }
+    let keyframes = seq.keyframes();
+    let eased = timing.keys.iter().any(|k| !k.easing.is_linear());
     if let Some(json) = &args.json {
         let value = SequenceJson {
             morph: &morph,
+            key_count: keyframes.len(),
+            keyframes: &keyframes,
             fps,
             keys: keys
                 .iter()
@@ -191,13 +197,21 @@ pub(crate) fn run(args: &AnimateArgs) -> anyhow::Result<Outcome> {
     } else {
         tl.looping.unwrap_or(render::Loop::Loop)
     };
+    let played = Played::new(&keyframes, &seq.frame_times(&schedule), looping, eased);
     for (out, image) in args.output.iter().zip(&images) {
-        write_output(args, out, *image, &morph, &schedule, fps, looping)?;
+        write_output(args, out, *image, &morph, &played, &schedule, fps, looping)?;
     }
     let to_stdout = args.json.as_deref().is_some_and(render::is_stdout)
         || args.output.iter().any(|o| render::is_stdout(o));
     if !to_stdout {
-        output::print(&summary(&seq, &keys, &schedule, &speeds, &morph))?;
+        output::print(&summary(
+            &seq,
+            &keys,
+            &schedule,
+            &speeds,
+            &morph,
+            keyframes.len(),
+        ))?;
     }
     Ok(Outcome::Success)
 }
@@ -405,6 +419,8 @@ struct SequenceJson<'a> {
     fps: f64,
     keys: Vec<KeyJson<'a>>,
     speeds: &'a [KeySpeed],
+    key_count: usize,
+    keyframes: &'a [Keyframe],
 }
 
 /// The image style of `animate`'s options.
@@ -415,11 +431,16 @@ fn image_style(args: &AnimateArgs) -> render::Style {
         .with_onion_skin(args.onion)
 }
 
+#[allow(
+    clippy::too_many_arguments,
+    reason = "plain glue between CLI options and the renderer"
+)]
 fn write_output(
     args: &AnimateArgs,
     out: &Path,
     image: super::ImageOutput,
     morph: &Morph,
+    played: &Played,
     schedule: &Schedule,
     fps: f64,
     looping: render::Loop,
@@ -443,12 +464,20 @@ fn write_output(
             columns: k + 2,
         };
         return write_frames(
-            &frames, out, sheet, &style, fps, looping, args.force, args.quiet,
+            &frames, None, out, sheet, &style, fps, looping, args.force, args.quiet,
         );
     }
     let frames = super::render_frames(&morph.frames);
     write_frames(
-        &frames, out, image, &style, fps, looping, args.force, args.quiet,
+        &frames,
+        Some(played),
+        out,
+        image,
+        &style,
+        fps,
+        looping,
+        args.force,
+        args.quiet,
     )
 }
 
@@ -458,17 +487,24 @@ fn summary(
     schedule: &Schedule,
     speeds: &[KeySpeed],
     morph: &Morph,
+    keyframes: usize,
 ) -> String {
     let frames = morph.frames.len();
     let valid = morph.frames.iter().filter(|f| f.is_immersion()).count();
+    let certified = (0..seq.key_count() - 1).all(|s| seq.tween(s).is_certified());
     let mut lines = vec![format!(
-        "{} keys, {} vertices each, {} frames at {} fps ({:.2} s), {} of them verified immersions",
+        "{} keys, {} vertices each, {} frames at {} fps ({:.2} s), {} of them verified immersions; {keyframes} keyframes ({})",
         keys.len(),
         seq.vertex_count(),
         frames,
         schedule.fps,
         (frames.max(1) - 1) as f64 / schedule.fps,
-        valid
+        valid,
+        if certified {
+            "every segment between them certified"
+        } else {
+            "some segments not certified: frames there checked one by one"
+        }
     )];
     for s in speeds {
         let k = &keys[s.key - 1];

@@ -105,12 +105,17 @@ pub(super) struct State {
 }
 
 impl State {
-    pub(super) fn new(limits: &ServeLimits, guard: Arc<Guard>) -> anyhow::Result<State> {
+    pub(super) fn new(
+        limits: &ServeLimits,
+        key_tolerance: f64,
+        guard: Arc<Guard>,
+    ) -> anyhow::Result<State> {
         let shapes = ShapeLimits {
             max_points: limits.max_points as usize,
             max_frames: limits.max_frames as usize,
             max_curves: limits.max_curves as usize,
             max_side: limits.max_side,
+            key_tolerance,
         };
         let job_timeout = Duration::from_secs(limits.job_timeout);
         Ok(State {
@@ -433,9 +438,9 @@ fn run_morph(
     let req: jobs::MorphRequest = http::parse_json(body)?;
     let plan = jobs::plan(req, shapes)?;
     let started = Instant::now();
-    let morph = jobs::compute(&plan, stop)?;
+    let (morph, keys) = jobs::compute(&plan, stop)?;
     let elapsed = started.elapsed();
-    let morph_json = exact_json(&morph)?;
+    let morph_json = exact_json(&crate::commands::morph::WithKeys::new(&morph, &keys))?;
     let id = JobId::random()?;
     let counts: Vec<usize> = {
         let mut c: Vec<usize> = morph.frames.iter().map(|f| f.points.len()).collect();
@@ -447,6 +452,7 @@ fn run_morph(
         "id": id.to_string(),
         "curves": plan.curves.len(),
         "frames": morph.frames.len(),
+        "key_count": keys.len(),
         "vertices": counts,
         "path": morph.path_name(),
         "fallback": morph.fallback,
@@ -475,7 +481,7 @@ fn run_morph(
     ];
     let frames = crate::commands::render_frames(&morph.frames);
     drop(morph);
-    let job = Job::new(id, frames, &plan, morph_json);
+    let job = Job::new(id, frames, &plan, morph_json, &keys);
     Ok((answer, job))
 }
 

@@ -14,14 +14,15 @@
 
 use super::http::ApiError;
 use crate::args::{CorrespondenceArg, CountsArg, IntermediateArg, PathArg, QualityArg};
+use crate::commands::keyed::{self, Played};
 use bytes::Bytes;
 use clap::ValueEnum;
-use immerse::correspond::{insert_vertices, resample_arc_length, shift_triangles};
 use immerse::frames::{Fallback, Morph};
 use immerse::morph::{
-    Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, MorphOptions,
-    ThirdVertexPath, Tween,
+    Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, Keyframe,
+    MorphOptions, ThirdVertexPath, Tween,
 };
+use immerse::sequence::{Key, Sequence, SequenceError, SequenceOptions};
 use immerse::{Curve, Point, Quality};
 use immerse_render as render;
 use serde::Deserialize;
@@ -260,6 +261,8 @@ pub(super) struct Job {
     looping: render::Loop,
     /// The morph as `immerse morph --json` writes it.
     morph_json: Bytes,
+    /// The keys its Lottie and SVG write (docs/design.md §12).
+    played: Played,
     /// What the job takes in memory (an estimate from its sizes).
     bytes: usize,
     /// Frames of the GIF being rendered: done, and in all (0 when none is).
@@ -273,7 +276,14 @@ impl Job {
         frames: Vec<render::Frame>,
         plan: &Plan,
         morph_json: Bytes,
+        keys: &[Keyframe],
     ) -> Job {
+        let played = Played::new(keys, &plan.times, plan.looping, plan.eased);
+        let key_bytes: usize = played
+            .keys
+            .iter()
+            .map(|k| k.points.len() * 16 + k.triangles.len() * 12 + 64)
+            .sum();
         let view = render::View::fit(&frames, &plan.style);
         let frame_bytes: usize = frames
             .iter()
@@ -286,13 +296,14 @@ impl Job {
             .sum();
         Job {
             id,
-            bytes: frame_bytes + morph_json.len() + 1024,
+            bytes: frame_bytes + key_bytes + morph_json.len() + 1024,
             frames,
             view,
             style: plan.style.clone(),
             fps: plan.fps,
             looping: plan.looping,
             morph_json,
+            played,
             gif_done: AtomicUsize::new(0),
             gif_total: AtomicUsize::new(0),
         }
@@ -306,6 +317,8 @@ pub(super) struct ShapeLimits {
     pub(super) max_frames: usize,
     pub(super) max_curves: usize,
     pub(super) max_side: u32,
+    /// Every morph's key tolerance (`--key-tolerance`).
+    pub(super) key_tolerance: f64,
 }
 
 /// `POST /api/morph`.
@@ -374,6 +387,9 @@ fn whole(field: &str, v: f64, lo: u64, hi: u64, unit: &str) -> Result<u64, ApiEr
 pub(super) struct Plan {
     pub(super) curves: Vec<Curve>,
     times: Vec<f64>,
+    /// The easing is not linear: every frame is a key of the Lottie and
+    /// SVG too.
+    eased: bool,
     options: CurveMorphOptions,
     pub(super) style: render::Style,
     pub(super) fps: f64,
@@ -459,7 +475,8 @@ pub(super) fn plan(req: MorphRequest, limits: &ShapeLimits) -> Result<Plan, ApiE
             IntermediateArg::Target => Intermediate::Target,
             IntermediateArg::Disk => Intermediate::Disk,
         })
-        .with_morph(MorphOptions::DEFAULT.with_path(ThirdVertexPath::from(path)));
+        .with_morph(MorphOptions::DEFAULT.with_path(ThirdVertexPath::from(path)))
+        .with_key_tolerance(limits.key_tolerance);
     let curves = curves_from(req.curves, limits.max_points)?;
     let style = render::Style::DEFAULT
         .with_size(w, h)
@@ -468,6 +485,7 @@ pub(super) fn plan(req: MorphRequest, limits: &ShapeLimits) -> Result<Plan, ApiE
     Ok(Plan {
         curves,
         times,
+        eased: easing != render::Easing::Linear,
         options,
         style,
         fps,
@@ -502,76 +520,69 @@ pub(super) fn curves_from(
     Ok(out)
 }
 
-/// Runs the morph of a plan: one [`Tween`] per consecutive pair; with two
-/// curves the frames are exactly those of `immerse morph` with the same
-/// options. With more, every curve is first brought to the largest vertex
-/// count (as `counts` says), each pair's frames are relabelled so that
-/// vertex `i` runs on where the previous pair left it, and the eased times
-/// run across the whole chain, each pair getting a share proportional to
-/// its vertex travel: every frame has the same vertex count and the frames
-/// meet exactly at each key. A chain stops between pairs and between
-/// frames when `stop` says so; planning a pair runs to its end.
-pub(super) fn compute(plan: &Plan, stop: &Stop) -> Result<Morph, ApiError> {
-    let n = plan.curves.iter().map(Curve::len).max().unwrap_or(0);
-    let keys: Vec<Vec<Point>> = if plan.curves.len() == 2 {
-        plan.curves.iter().map(|c| c.points.clone()).collect()
-    } else {
-        plan.curves
-            .iter()
-            .map(|c| match plan.options.counts {
-                Counts::Resample => resample_arc_length(&c.points, n),
-                _ => insert_vertices(&c.points, n - c.len()).0,
-            })
-            .collect()
-    };
+/// Runs the morph of a plan, with its keys: with two curves one [`Tween`],
+/// whose frames are exactly those of `immerse morph` with the same options;
+/// with more a [`Sequence`] (vertex counts equalised once across all
+/// curves, vertex numbers carried along the chain), its frames at the
+/// eased times of the whole chain on the sequence's pace axis, so the
+/// frames meet exactly at each key. Frames stop when `stop` says so;
+/// planning runs to its end.
+pub(super) fn compute(plan: &Plan, stop: &Stop) -> Result<(Morph, Vec<Keyframe>), ApiError> {
     let stopped = || ApiError::new(503, "the morph was stopped");
-    let mut tweens = Vec::with_capacity(keys.len() - 1);
-    for (i, pair) in keys.windows(2).enumerate() {
+    let fail = |e: immerse::morph::MorphError| ApiError::new(500, format!("the morph failed: {e}"));
+    let curves = &plan.curves;
+    if curves.len() == 2 {
+        let tween = Tween::new(&curves[0].points, &curves[1].points, &plan.options).map_err(
+            |e| match e {
+                CurveMorphError::NotSelfOverlapping { side, reason } => {
+                    let k = match side {
+                        immerse::morph::Side::Source => 1,
+                        immerse::morph::Side::Target => 2,
+                    };
+                    ApiError::bad(format!("curve {k} is not self-overlapping: {reason}"))
+                }
+                other => ApiError::new(500, format!("the morph failed: {other}")),
+            },
+        )?;
         if stop.now() {
             return Err(stopped());
         }
-        let tween = Tween::new(&pair[0], &pair[1], &plan.options).map_err(|e| match e {
-            CurveMorphError::NotSelfOverlapping { side, reason } => {
-                let k = match side {
-                    immerse::morph::Side::Source => i + 1,
-                    immerse::morph::Side::Target => i + 2,
-                };
-                ApiError::bad(format!("curve {k} is not self-overlapping: {reason}"))
-            }
-            other => ApiError::new(500, format!("the morph failed: {other}")),
-        })?;
-        tweens.push(tween);
+        let morph = tween.morph(&plan.times).map_err(fail)?;
+        return Ok((morph, tween.keyframes()));
     }
-    let fail = |e: immerse::morph::MorphError| ApiError::new(500, format!("the morph failed: {e}"));
-    if tweens.len() == 1 {
-        return tweens[0].morph(&plan.times).map_err(fail);
-    }
-    let lengths: Vec<f64> = tweens.iter().map(Tween::path_length).collect();
+    let keys: Vec<Key> = curves
+        .iter()
+        .map(|c| Key::new(c.name.clone(), c.points.clone()))
+        .collect();
+    let seq = Sequence::new(
+        &keys,
+        &[],
+        &SequenceOptions::DEFAULT.with_morph(plan.options),
+    )
+    .map_err(|e| match e {
+        SequenceError::NotSelfOverlapping { key, reason, .. } => {
+            ApiError::bad(format!("curve {key} is not self-overlapping: {reason}"))
+        }
+        other => ApiError::new(500, format!("the morph failed: {other}")),
+    })?;
+    let lengths = seq.path_lengths();
     let total: f64 = lengths.iter().sum();
+    let segments = lengths.len();
     let shares: Vec<f64> = if total > 0.0 && total.is_finite() {
         lengths.iter().map(|l| l / total).collect()
     } else {
-        vec![1.0 / tweens.len() as f64; tweens.len()]
+        vec![1.0 / segments as f64; segments]
     };
-    let mut starts = Vec::with_capacity(shares.len());
+    let mut starts = Vec::with_capacity(segments);
     let mut acc = 0.0;
     for s in &shares {
         starts.push(acc);
         acc += s;
     }
-    // Pair k starts where pair k-1 ended: its vertex i is the chain's
-    // vertex i - offset[k].
-    let mut offsets = Vec::with_capacity(tweens.len());
-    let mut offset = 0;
-    for t in &tweens {
-        offsets.push(offset);
-        if t.vertex_count() > 0 {
-            offset = (offset + t.report().shift) % t.vertex_count();
-        }
-    }
     let mut paths: Vec<ThirdVertexPath> = Vec::new();
     let mut fallbacks: Vec<Fallback> = Vec::new();
-    for (i, t) in tweens.iter().enumerate() {
+    for i in 0..segments {
+        let t = seq.tween(i);
         for p in &t.report().paths {
             if !paths.contains(p) {
                 paths.push(*p);
@@ -589,36 +600,31 @@ pub(super) fn compute(plan: &Plan, stop: &Stop) -> Result<Morph, ApiError> {
         if stop.now() {
             return Err(stopped());
         }
-        // The last pair whose share starts at or before u (the end of a
-        // pair is the start of the next: the same curve).
+        // The last segment whose share starts at or before u (the end of
+        // a segment is the start of the next: the same curve).
         let k = starts
             .iter()
             .rposition(|&s| s <= u && u > 0.0)
             .unwrap_or(0)
-            .min(tweens.len() - 1);
-        let local = if u >= 1.0 && k == tweens.len() - 1 {
+            .min(segments - 1);
+        let local = if u >= 1.0 && k == segments - 1 {
             1.0
         } else if shares[k] > 0.0 {
             ((u - starts[k]) / shares[k]).clamp(0.0, 1.0)
         } else {
             1.0
         };
-        let f = tweens[k].frame(local).map_err(fail)?;
-        let m = f.points.len();
-        // Chain vertex i is vertex i + offset of this pair.
-        let c = offsets[k] % m.max(1);
-        frames.push(immerse::frames::Frame {
-            t: u,
-            points: (0..m).map(|i| f.points[(i + c) % m]).collect(),
-            triangles: shift_triangles(m, &f.triangles, c),
-        });
+        let mut f = seq.frame(k, local).map_err(fail)?;
+        f.t = u;
+        frames.push(f);
     }
-    Ok(Morph {
+    let morph = Morph {
         paths,
         fallback: !fallbacks.is_empty(),
         fallbacks,
         frames,
-    })
+    };
+    Ok((morph, seq.keyframes()))
 }
 
 /// A file of a job: its content type, bytes and download name.
@@ -737,24 +743,29 @@ pub(super) fn make(job: &Job, want: &Want, stop: &Stop) -> Result<File, ApiError
             job.gif_total.store(0, Ordering::Relaxed);
             file("image/gif", gif.map_err(render_err)?)
         }
-        Want::Svg => file(
-            "image/svg+xml",
-            render::animated_svg(&job.frames, &job.style, job.fps, job.looping)
-                .map_err(render_err)?
-                .into_bytes(),
-        ),
-        Want::Lottie => file(
-            "application/json",
-            render::lottie(&job.frames, &job.style, job.fps, job.looping)
-                .map_err(render_err)?
-                .into_bytes(),
-        ),
+        Want::Svg => file("image/svg+xml", keyed_file(job, keyed::Kind::AnimatedSvg)?),
+        Want::Lottie => file("application/json", keyed_file(job, keyed::Kind::Lottie)?),
         Want::Json => File {
             content_type: "application/json",
             bytes: job.morph_json.clone(),
             name,
         },
     })
+}
+
+/// The job's Lottie or animated SVG from its keys, certified as written
+/// (as `immerse morph -o` writes it).
+fn keyed_file(job: &Job, kind: keyed::Kind) -> Result<Vec<u8>, ApiError> {
+    keyed::write(
+        kind,
+        &job.played,
+        job.view,
+        &job.style,
+        job.fps,
+        job.looping,
+    )
+    .map(|w| w.text.into_bytes())
+    .map_err(|e| ApiError::new(500, format!("{e:#}")))
 }
 
 #[cfg(test)]
@@ -784,6 +795,10 @@ mod tests {
             fps: DEFAULT_FPS,
             looping: render::Loop::Loop,
             morph_json: Bytes::new(),
+            played: Played {
+                keys: Vec::new(),
+                frames: 0,
+            },
             bytes,
             gif_done: AtomicUsize::new(0),
             gif_total: AtomicUsize::new(0),

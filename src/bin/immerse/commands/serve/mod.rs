@@ -45,7 +45,7 @@ pub(crate) fn run(args: &ServeArgs) -> anyhow::Result<Outcome> {
     let request_timeout =
         Duration::from_secs(limits.body_timeout + limits.job_timeout + REQUEST_MARGIN_SECS);
     let guard = Arc::new(http::Guard::new(port, max_body, request_timeout));
-    let state = Arc::new(api::State::new(limits, guard)?);
+    let state = Arc::new(api::State::new(limits, args.key_tolerance, guard)?);
     let app = api::app(state, request_timeout, max_body);
     let server = http::Server::new(http::ConnLimits {
         max_connections: limits.max_connections as usize,

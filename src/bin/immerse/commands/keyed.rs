@@ -1,0 +1,214 @@
+//! Lottie and animated SVG written from the certified keys of a morph or a
+//! sequence (docs/design.md §12): exactly the keys, at the frames that pass
+//! them, interpolated linearly; then read back with the library's reader
+//! and certified as written (`immerse::certify`: Lottie against an `f32`
+//! player's margin, SVG against an `f64` player's). Coordinates get the
+//! fewest decimals of 2, 3, 4, 6 that certify, else full precision; a
+//! document that does not certify even then is refused and nothing is
+//! written.
+
+use anyhow::Context;
+use immerse::certify::{
+    MotionOptions, Player, Verdict, certify_motion, certify_segment, read_animation,
+};
+use immerse::morph::{Keyframe, timed_keyframes};
+use immerse_render as render;
+use rayon::prelude::*;
+
+/// The keys an output writes, in played order, `t` in frames.
+pub(crate) struct Played {
+    /// The keys ([`timed_keyframes`]).
+    pub(crate) keys: Vec<Keyframe>,
+    /// Frames of the played animation.
+    pub(crate) frames: usize,
+}
+
+impl Played {
+    /// The keys of an animation whose frame `i` shows `keys` at `times[i]`,
+    /// played as `looping` says; with `every_frame` (eased timing) every
+    /// frame is a key too.
+    pub(crate) fn new(
+        keys: &[Keyframe],
+        times: &[f64],
+        looping: render::Loop,
+        every_frame: bool,
+    ) -> Played {
+        let order = looping.sequence(times.len());
+        let played: Vec<f64> = order.iter().map(|&i| times[i]).collect();
+        Played {
+            keys: timed_keyframes(keys, &played, every_frame),
+            frames: played.len(),
+        }
+    }
+}
+
+/// Which document.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Kind {
+    /// Lottie, certified for an `f32` player.
+    Lottie,
+    /// Animated SVG, certified for an `f64` player.
+    AnimatedSvg,
+}
+
+impl Kind {
+    fn player(self) -> Player {
+        match self {
+            Kind::Lottie => Player::F32,
+            Kind::AnimatedSvg => Player::F64,
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Kind::Lottie => "Lottie file",
+            Kind::AnimatedSvg => "animated SVG",
+        }
+    }
+}
+
+/// Decimals tried in turn; `None` is full precision.
+const DIGITS: [Option<u32>; 5] = [Some(2), Some(3), Some(4), Some(6), None];
+
+/// A written document and the decimals it needed.
+pub(crate) struct Written {
+    /// The document.
+    pub(crate) text: String,
+    /// Decimals of its coordinates (`None`: full precision).
+    pub(crate) digits: Option<u32>,
+    /// Keys written.
+    pub(crate) keys: usize,
+}
+
+/// The document of `kind` for `played`, in the pixels of `view`, with
+/// the fewest decimals that certify as written.
+///
+/// # Errors
+///
+/// A render error, or none of the precisions certified (the message names
+/// the segment and why).
+pub(crate) fn write(
+    kind: Kind,
+    played: &Played,
+    view: render::View,
+    style: &render::Style,
+    fps: f64,
+    looping: render::Loop,
+) -> anyhow::Result<Written> {
+    let shapes: Vec<render::Frame> = played
+        .keys
+        .iter()
+        .map(|k| render::Frame::from_triangles(super::plain_points(&k.points), Vec::new()))
+        .collect();
+    let times: Vec<f64> = played.keys.iter().map(|k| k.t).collect();
+    let mut why = String::new();
+    for digits in DIGITS {
+        let keys = render::Keys {
+            shapes: &shapes,
+            times: &times,
+            frames: played.frames,
+            view,
+            digits,
+        };
+        let text = match kind {
+            Kind::Lottie => render::lottie_keys(&keys, style, fps)?,
+            Kind::AnimatedSvg => render::animated_svg_keys(&keys, style, fps, looping)?,
+        };
+        match certify_written(kind, &text, played) {
+            Ok(()) => {
+                return Ok(Written {
+                    text,
+                    digits,
+                    keys: shapes.len(),
+                });
+            }
+            Err(e) => why = e,
+        }
+    }
+    anyhow::bail!(
+        "the {} is not certified as written, even in full precision, for {} player: {why}; nothing was written (the shapes there are thinner than that player's rounding; an animated SVG, -o NAME.svg, is certified for f64 players)",
+        kind.name(),
+        match kind.player() {
+            Player::F32 => "an f32",
+            _ => "an f64",
+        }
+    )
+}
+
+/// Reads `text` back and certifies every segment of its animated outline
+/// with the keys' triangulations (re-triangulating where one fails).
+fn certify_written(kind: Kind, text: &str, played: &Played) -> Result<(), String> {
+    let anim = read_animation(text.as_bytes(), kind.name()).map_err(|e| e.to_string())?;
+    let path = anim
+        .paths
+        .iter()
+        .find(|p| p.keys.len() == played.keys.len())
+        .ok_or_else(|| "the animated outline was not read back".to_string())?;
+    let points = |i: usize| {
+        let mut p = path.keys[i].points.clone();
+        if path.reversed {
+            p.reverse();
+        }
+        p
+    };
+    let player = kind.player();
+    let failures: Vec<String> = (0..path.keys.len().saturating_sub(1))
+        .into_par_iter()
+        .filter_map(|i| {
+            let (a, b) = (points(i), points(i + 1));
+            let tris = &played.keys[i].triangles;
+            let direct = certify_segment(&a, &b, tris, player)
+                .ok()
+                .filter(|r| r.is_certified());
+            if direct.is_some() {
+                return None;
+            }
+            let next = &played.keys[i + 1].triangles;
+            let again = certify_motion(
+                &a,
+                &b,
+                &[tris.as_slice(), next.as_slice()],
+                player,
+                MotionOptions::default(),
+            );
+            match again.verdict {
+                Verdict::Certified => None,
+                Verdict::Invalid { at } => Some(format!(
+                    "segment {i} (frames {} to {}) is not an immersed disk at s = {at}",
+                    played.keys[i].t,
+                    played.keys[i + 1].t
+                )),
+                Verdict::Undecided { reached, reason } => Some(format!(
+                    "segment {i} (frames {} to {}) is certified only up to s = {reached} ({reason})",
+                    played.keys[i].t,
+                    played.keys[i + 1].t
+                )),
+            }
+        })
+        .collect();
+    match failures.into_iter().next() {
+        None => Ok(()),
+        Some(f) => Err(f),
+    }
+}
+
+/// Writes `written` to `out` through the render crate's one output
+/// mechanism (never half-written).
+pub(crate) fn save(written: &Written, out: &std::path::Path, force: bool) -> anyhow::Result<()> {
+    render::write_atomic(out, written.text.as_bytes(), force)
+        .with_context(|| format!("cannot write {}", out.display()))
+}
+
+/// What a note says about a written document.
+pub(crate) fn describe(kind: Kind, written: &Written, bytes: usize) -> String {
+    format!(
+        "{}: {} keys, coordinates {}, certified as written for an {} player ({bytes} bytes)",
+        kind.name(),
+        written.keys,
+        match written.digits {
+            Some(d) => format!("to {d} decimals"),
+            None => "in full precision".to_string(),
+        },
+        kind.player()
+    )
+}

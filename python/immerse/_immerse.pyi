@@ -147,6 +147,10 @@ class Tween:
         """``count`` frames from ``a`` to ``b``, a (count, n, 2) array; ``easing``
         as ``--easing``: ``linear``, ``ease``, ``ease-in``, ``ease-out``,
         ``ease-in-out`` or ``cubic-bezier(x1,y1,x2,y2)``."""
+    #: The keyframes (``t`` strictly increasing from 0 to 1, the
+    #: triangulation of the segment that follows each key): the animation
+    #: is their piecewise-linear interpolation, every segment certified.
+    keyframes: List[Frame]
     #: What planning did.
     report: MorphReport
     #: Vertices of every frame.

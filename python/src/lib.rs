@@ -672,6 +672,26 @@ impl Tween {
         frames_array(py, &morph.frames, n)
     }
 
+    /// The keyframes: the animation is their piecewise-linear
+    /// interpolation, every segment between consecutive keys certified an
+    /// immersion for every s in exact arithmetic (docs/design.md §13). A
+    /// list of ``Frame``: ``t`` strictly increasing from 0 to 1, and the
+    /// triangulation of the segment that follows each key (a flip key is
+    /// written once, with the triangulation after the flip).
+    #[getter]
+    fn keyframes(&self, py: Python<'_>) -> Vec<Frame> {
+        py.detach(|| self.inner.keyframes())
+            .into_iter()
+            .map(|k| Frame {
+                inner: immerse::frames::Frame {
+                    t: k.t,
+                    points: k.points,
+                    triangles: k.triangles,
+                },
+            })
+            .collect()
+    }
+
     /// What planning did: shift, flips, side, paths, fallbacks.
     #[getter]
     fn report(&self) -> MorphReport {

@@ -177,3 +177,28 @@ def test_sequence_timing_and_hints():
         immerse.Sequence([SPIRAL])
     with pytest.raises(immerse.NotSelfOverlapping, match="key 2 .* is not self-overlapping"):
         immerse.Sequence([SPIRAL, CURVES / "figure-eight-n64.json"])
+
+
+def test_keyframes_are_the_motion_and_certified():
+    tween = immerse.Tween(SPIRAL, CURL)
+    keys = tween.keyframes
+    assert len(keys) >= 2
+    ts = [k.t for k in keys]
+    assert ts[0] == 0.0 and ts[-1] == 1.0
+    assert all(a < b for a, b in zip(ts, ts[1:]))
+    np.testing.assert_array_equal(keys[0].points, tween.at(0.0))
+    np.testing.assert_array_equal(keys[-1].points, tween.at(1.0))
+    # A frame between two keys is their straight-line interpolation.
+    k = len(keys) // 2
+    mid = 0.5 * (ts[k - 1] + ts[k])
+    w = (mid - ts[k - 1]) / (ts[k] - ts[k - 1])
+    expected = (1 - w) * keys[k - 1].points + w * keys[k].points
+    np.testing.assert_allclose(tween.at(mid), expected, rtol=0, atol=1e-9)
+    # Every segment certified by the library's certificate, with the
+    # keys' own triangulations.
+    r = immerse.certify(
+        [k.points for k in keys],
+        times=ts,
+        triangles=[k.triangles for k in keys],
+    )
+    assert r.certified and r.segments == len(keys) - 1

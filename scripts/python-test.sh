@@ -51,7 +51,10 @@ echo "built and installed from scratch in $((SECONDS - build_start)) s"
 "$py" -c 'import immerse; print("immerse", immerse.__version__, "from", immerse.__file__)'
 
 step "pytest (python/tests)"
-(cd python && "$py" -m pytest -q tests)
+# The venv's pytest script, not `python -m pytest`: -m puts the working
+# folder first on sys.path, where python/immerse (the sources, without the
+# compiled module) would shadow the installed package.
+(cd python && "$venv/bin/pytest" -q tests)
 
 step "the extension through Inkscape's command line"
 # Debian's inkscape and a virtual display (extension actions need one):

@@ -600,23 +600,10 @@ impl Compatible {
         let cap = |v: usize| TAU - self.fan_margin.min((TAU - s_c[v]) / 2.0);
         // Local: each over-full vertex blends its own fan.
         let s = layout::fan_sums(n, &self.corners, &ang);
-        let local: Vec<f64> = (0..n)
-            .map(|v| {
-                let c = cap(v);
-                if s[v] > c && s[v] > s_c[v] {
-                    ((s[v] - c) / (s[v] - s_c[v])).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                }
-            })
-            .collect();
+        let local = self.local_blends(&s, &s_c, cap);
         for (i, a) in ang.iter_mut().enumerate() {
-            let l = self.corners[i]
-                .iter()
-                .map(|&v| local[v])
-                .fold(0.0, f64::max);
-            if l > 0.0 {
-                *a = lerp3(*a, rule[i], l);
+            if local[i] > 0.0 {
+                *a = lerp3(*a, rule[i], local[i]);
                 factors[i] = layout::factor(*a);
             }
         }
@@ -630,6 +617,27 @@ impl Compatible {
             }
         }
         factors
+    }
+
+    /// The local step of the fan blend (docs/design.md §6): per triangle,
+    /// how far its angles move toward the angle rule so that each vertex
+    /// whose fan sum `s` passes its cap comes back to it, the largest such
+    /// amount over the triangle's corners (`s_c` the angle rule's sums).
+    fn local_blends(&self, s: &[f64], s_c: &[f64], cap: impl Fn(usize) -> f64) -> Vec<f64> {
+        let local: Vec<f64> = (0..s.len())
+            .map(|v| {
+                let c = cap(v);
+                if s[v] > c && s[v] > s_c[v] {
+                    ((s[v] - c) / (s[v] - s_c[v])).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        self.corners
+            .iter()
+            .map(|c| c.iter().map(|&v| local[v]).fold(0.0, f64::max))
+            .collect()
     }
 
     /// The polar guide at `t` (the `polar` path): every vertex's angle
@@ -751,23 +759,10 @@ impl Compatible {
         };
         // Local: each over-full vertex blends its own fan.
         let s = settle(&mut ang, &mut rough);
-        let local: Vec<f64> = (0..n)
-            .map(|v| {
-                let c = cap(v);
-                if s[v] > c && s[v] > s_c[v] {
-                    ((s[v] - c) / (s[v] - s_c[v])).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                }
-            })
-            .collect();
+        let local = self.local_blends(&s, &s_c, cap);
         for (i, a) in ang.iter_mut().enumerate() {
-            let l = self.corners[i]
-                .iter()
-                .map(|&v| local[v])
-                .fold(0.0, f64::max);
-            if l > 0.0 {
-                *a = lerp3(*a, rule[i], l);
+            if local[i] > 0.0 {
+                *a = lerp3(*a, rule[i], local[i]);
                 kept[i] = false;
             }
         }

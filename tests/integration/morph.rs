@@ -307,6 +307,31 @@ fn assert_continuous(name: &str, steps: [f64; 3]) {
     );
 }
 
+/// The per-pair gates of docs/design.md §7c on `a` → `b`: continuous, no
+/// spike, no collapse or ballooning, unwind at least `unwind_floor`,
+/// detour at most 3. Returns the detour and the angle ratio.
+fn assert_pair_gates(name: &str, a: &str, b: &str, unwind_floor: f64) -> (f64, f64) {
+    let (steps, v, detour, unwind) = view_of(a, b);
+    assert_continuous(name, steps);
+    assert!(
+        v.edge_ratio <= 2.0,
+        "{name}: edge ratio {:.2}",
+        v.edge_ratio
+    );
+    assert!(
+        v.area_low >= 0.8 && v.area_high <= 1.15,
+        "{name}: area [{:.3}, {:.3}]",
+        v.area_low,
+        v.area_high
+    );
+    assert!(
+        unwind >= unwind_floor,
+        "{name}: unwind {unwind:.3} < {unwind_floor}"
+    );
+    assert!(detour <= 3.0, "{name}: detour {detour:.2} > 3");
+    (detour, v.angle_ratio)
+}
+
 /// Motion on the pairs of `curves/motion-pairs.list` with the default
 /// options (docs/motion.md): every gate of docs/design.md §7c at once on
 /// every pair. Continuous (the largest step shrinks with the frame count),
@@ -321,23 +346,9 @@ fn motion_meets_its_goal_on_the_motion_pairs() {
     let (mut detours, mut angles) = (Vec::new(), Vec::new());
     for (a, b) in pairs::motion_pairs().into_iter().step_by(stride) {
         let name = format!("{a} → {b}");
-        let (steps, v, detour, unwind) = view_of(&a, &b);
-        assert_continuous(&name, steps);
-        assert!(
-            v.edge_ratio <= 2.0,
-            "{name}: edge ratio {:.2}",
-            v.edge_ratio
-        );
-        assert!(
-            v.area_low >= 0.8 && v.area_high <= 1.15,
-            "{name}: area [{:.3}, {:.3}]",
-            v.area_low,
-            v.area_high
-        );
-        assert!(unwind >= 0.9, "{name}: unwind {unwind:.3}");
-        assert!(detour <= 3.0, "{name}: detour {detour:.2} > 3");
+        let (detour, angle) = assert_pair_gates(&name, &a, &b, 0.9);
         detours.push(detour);
-        angles.push(v.angle_ratio);
+        angles.push(angle);
     }
     assert!(
         detours.len() * stride >= 20,
@@ -374,25 +385,11 @@ fn motion_meets_its_goal_on_the_reference_pairs() {
     let mut detours = Vec::new();
     for (a, b) in reference_pairs().into_iter().step_by(stride) {
         let name = format!("{a} → {b}");
-        let (steps, v, detour, unwind) = view_of(&a, &b);
-        assert_continuous(&name, steps);
-        assert!(
-            v.edge_ratio <= 2.0,
-            "{name}: edge ratio {:.2}",
-            v.edge_ratio
-        );
-        assert!(
-            v.area_low >= 0.8 && v.area_high <= 1.15,
-            "{name}: area [{:.3}, {:.3}]",
-            v.area_low,
-            v.area_high
-        );
         let floor = known
             .iter()
             .find(|k| k.0 == a && k.1 == b)
             .map_or(0.9, |k| k.2);
-        assert!(unwind >= floor, "{name}: unwind {unwind:.3} < {floor}");
-        assert!(detour <= 3.0, "{name}: detour {detour:.2} > 3");
+        let (detour, _) = assert_pair_gates(&name, &a, &b, floor);
         detours.push(detour);
     }
     detours.sort_by(f64::total_cmp);

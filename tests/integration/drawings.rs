@@ -1,0 +1,287 @@
+//! Drawings: many styled shapes per file (docs/design.md §2a).
+
+use crate::util::curve;
+use immerse::Curve;
+use immerse::curve::{CurveError, Format};
+use immerse::drawing::{Color, Drawing, DrawingError, FillRule, winding_number};
+
+fn svg(body: &str) -> Vec<u8> {
+    format!(r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 200 200">{body}</svg>"#)
+        .into_bytes()
+}
+
+fn read(body: &str) -> Result<Drawing, DrawingError> {
+    Drawing::from_bytes(&svg(body), Format::Svg, "d.svg", "d")
+}
+
+fn hex(h: &str) -> Option<Color> {
+    Some(Color::parse_hex(h).unwrap())
+}
+
+#[test]
+fn svg_shapes_keep_order_ids_styles_and_transforms() {
+    let d = read(
+        r##"<rect id="back" x="0" y="0" width="100" height="50" fill="#ff0000"/>
+        <g transform="translate(10 20)" opacity="0.5">
+          <circle id="eye" cx="30" cy="30" r="10" fill="#00ff00" fill-opacity="0.5" stroke="#0000ff" stroke-width="3"/>
+          <path id="pair" d="M 60 60 L 80 60 L 80 80 Z M 100 60 L 120 60 L 120 80 Z" fill="#123456" fill-rule="evenodd"/>
+        </g>
+        <path d="M 0 100 L 20 100" stroke="black" fill="none"/>"##,
+    )
+    .unwrap();
+    let ids: Vec<&str> = d.shapes.iter().map(|s| s.id.as_str()).collect();
+    assert_eq!(ids, ["back", "eye", "pair.1", "pair.2"]);
+    assert_eq!(d.shapes[0].style.fill, hex("#ff0000"));
+    assert_eq!(d.shapes[0].style.stroke, None);
+    assert_eq!(d.shapes[0].style.opacity, 1.0);
+    let eye = &d.shapes[1];
+    assert_eq!(eye.style.fill, hex("#00ff00"));
+    assert_eq!(eye.style.stroke, hex("#0000ff"));
+    assert_eq!(eye.style.stroke_width, 3.0);
+    assert!(
+        (eye.style.opacity - 0.25).abs() < 1e-6,
+        "group × fill opacity"
+    );
+    // The transform is applied (y flipped): the circle's centre is at
+    // (40, -50).
+    let c = immerse::geom::polygon::area_centroid(&eye.points);
+    assert!(
+        (c.x - 40.0).abs() < 0.05 && (c.y + 50.0).abs() < 0.05,
+        "{c:?}"
+    );
+    assert_eq!(d.shapes[2].style.fill_rule, FillRule::Evenodd);
+    assert_eq!(d.shapes[2].points.len(), 3);
+    assert_eq!(d.shapes[3].label, "shape 4 (path 'pair' subpath 2)");
+    assert_eq!(
+        d.notices,
+        ["path 4: an open stroke-only path is a line, not a shape; left out"]
+    );
+}
+
+#[test]
+fn gradients_are_flattened_with_a_notice() {
+    let d = read(
+        r##"<defs><linearGradient id="g"><stop offset="0" stop-color="#000000"/><stop offset="1" stop-color="#ffffff"/></linearGradient></defs>
+        <rect id="r" width="10" height="10" fill="url(#g)"/>"##,
+    )
+    .unwrap();
+    let fill = d.shapes[0].style.fill.unwrap();
+    // The OKLab mean of black and white: lightness 0.5.
+    assert_eq!(fill, Color::from_oklab([0.5, 0.0, 0.0]));
+    assert_eq!(
+        d.notices,
+        [format!(
+            "path 'r': fill gradient flattened to the solid colour {}",
+            fill.hex()
+        )]
+    );
+}
+
+#[test]
+fn only_open_strokes_is_refused() {
+    let e = read(r#"<path id="l" d="M 0 0 L 10 10" stroke="black" fill="none"/>"#).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "d.svg: no closed shape found (open stroke-only paths left out: path 'l'); draw closed, filled paths"
+    );
+}
+
+const SQUARE_CCW: &str = "M 0 0 L 0 100 L 100 100 L 100 0 Z";
+
+#[test]
+fn holes_are_refused_naming_the_subpath() {
+    // SVG is y down: this outer square is counter-clockwise once y is
+    // flipped; the inner one is drawn the other way.
+    let nonzero = read(&format!(
+        r#"<path id="ring" d="{SQUARE_CCW} M 30 30 L 70 30 L 70 70 L 30 70 Z"/>"#
+    ))
+    .unwrap_err();
+    assert!(matches!(nonzero, DrawingError::Hole { .. }), "{nonzero}");
+    assert_eq!(
+        nonzero.to_string(),
+        "d.svg: shape 2 (path 'ring' subpath 2) is a hole in shape 1 (path 'ring' subpath 1) (under the nonzero fill rule it cuts a region out of it); holes are not supported yet: draw the parts as separate shapes"
+    );
+    // Same orientation: nonzero paints the inner square twice (no hole),
+    // even-odd cuts it out.
+    let same = format!(r#"{SQUARE_CCW} M 30 30 L 30 70 L 70 70 L 70 30 Z"#);
+    let d = read(&format!(r#"<path d="{same}"/>"#)).unwrap();
+    assert_eq!(d.shapes.len(), 2);
+    let e = read(&format!(r#"<path d="{same}" fill-rule="evenodd"/>"#)).unwrap_err();
+    assert!(e.to_string().contains("is a hole in shape 1"), "{e}");
+    assert!(e.to_string().contains("evenodd"), "{e}");
+    // Two squares that only overlap: even-odd leaves their lens unpainted,
+    // which separate shapes would paint.
+    let lens = read(
+        r#"<path d="M 0 0 L 0 50 L 50 50 L 50 0 Z M 25 25 L 25 90 L 90 90 L 90 25 Z" fill-rule="evenodd"/>"#,
+    )
+    .unwrap_err();
+    assert!(lens.to_string().contains("is a hole"), "{lens}");
+    // Separate elements never cut each other: they are painted apart.
+    let d = read(&format!(
+        r#"<path d="{SQUARE_CCW}"/><path d="M 30 30 L 70 30 L 70 70 L 30 70 Z" fill="white"/>"#
+    ))
+    .unwrap();
+    assert_eq!(d.shapes.len(), 2);
+}
+
+/// Under nonzero, a subpath drawn the other way inside a region a
+/// self-overlapping outer shape covers twice cuts nothing (the sum stays
+/// 1): it is a shape of its own. Inside a region covered once it is a
+/// hole.
+#[test]
+fn reversed_subpath_in_a_doubly_covered_region_is_not_a_hole() {
+    let outer = Curve::from_path(curve("spiral-strip-400deg-n30.json")).unwrap();
+    let (lo, hi) = outer
+        .points
+        .iter()
+        .fold((outer.points[0], outer.points[0]), |(l, h), &p| {
+            (l.min(p), h.max(p))
+        });
+    let size = (hi - lo).length();
+    let r = size * 0.01;
+    // A small square (of half-side r) whose corners and centre all have
+    // winding number w.
+    let find = |w: i64| {
+        (1..100)
+            .flat_map(|i| (1..100).map(move |j| (i, j)))
+            .map(|(i, j)| {
+                immerse::Point::new(
+                    lo.x + (hi.x - lo.x) * f64::from(i) / 100.0,
+                    lo.y + (hi.y - lo.y) * f64::from(j) / 100.0,
+                )
+            })
+            .find(|&c| {
+                [
+                    (0.0, 0.0),
+                    (r, r),
+                    (-r, r),
+                    (r, -r),
+                    (-r, -r),
+                    (0.0, 2.0 * r),
+                    (2.0 * r, 0.0),
+                    (0.0, -2.0 * r),
+                    (-2.0 * r, 0.0),
+                ]
+                .iter()
+                .all(|&(dx, dy)| {
+                    winding_number(&outer.points, c + immerse::Point::new(dx, dy)) == Some(w)
+                })
+            })
+            .unwrap()
+    };
+    // SVG path data (y down) of the outer curve and of a square at c that
+    // is clockwise once y is flipped back up.
+    let path = |pts: &[immerse::Point]| {
+        let mut d = String::new();
+        for (k, p) in pts.iter().enumerate() {
+            d.push_str(&format!(
+                "{} {} {} ",
+                if k == 0 { "M" } else { "L" },
+                p.x,
+                -p.y
+            ));
+        }
+        d + "Z "
+    };
+    let square_cw = |c: immerse::Point| {
+        let q = |dx: f64, dy: f64| c + immerse::Point::new(dx * r, dy * r);
+        path(&[q(-1.0, -1.0), q(-1.0, 1.0), q(1.0, 1.0), q(1.0, -1.0)])
+    };
+    let outer_d = path(&outer.points);
+    let twice = find(2);
+    let d = read(&format!(r#"<path d="{outer_d}{}"/>"#, square_cw(twice))).unwrap();
+    assert_eq!(d.shapes.len(), 2);
+    assert!(d.shapes[1].reversed, "the clockwise square is reversed");
+    assert!(d.require_self_overlapping("d.svg").is_ok());
+    let once = find(1);
+    let e = read(&format!(r#"<path d="{outer_d}{}"/>"#, square_cw(once))).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("shape 2 (path 1 subpath 2) is a hole in shape 1 (path 1 subpath 1)"),
+        "{e}"
+    );
+}
+
+#[test]
+fn every_shape_must_be_self_overlapping() {
+    let d = read(
+        r#"<rect width="10" height="10"/><path id="eight" d="M 0 0 L 10 10 L 10 0 L 0 10 Z"/>"#,
+    )
+    .unwrap();
+    let e = d.require_self_overlapping("d.svg").unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("d.svg: shape 2 (path 'eight') is not self-overlapping ("),
+        "{e}"
+    );
+}
+
+#[test]
+fn json_drawings_read_with_defaults_and_refuse_bad_fields() {
+    let json = br##"{"shapes": [
+        {"id": "a", "points": [[0,0],[1,0],[0,1]], "fill": "#abc", "opacity": 0.5},
+        {"points": [[0,0],[0,2],[2,2],[2,0]], "fill": null, "stroke": "#102030", "stroke_width": 2, "fill_rule": "evenodd"}
+    ]}"##;
+    let d = Drawing::from_bytes(json, Format::Json, "d.json", "d").unwrap();
+    assert_eq!(d.shapes.len(), 2);
+    assert_eq!(d.shapes[0].style.fill, hex("#aabbcc"));
+    assert_eq!(d.shapes[0].style.opacity, 0.5);
+    assert_eq!(d.shapes[1].style.fill, None);
+    assert_eq!(d.shapes[1].style.stroke, hex("#102030"));
+    assert_eq!(d.shapes[1].style.fill_rule, FillRule::Evenodd);
+    assert!(d.shapes[1].reversed, "given clockwise");
+    let bad = br#"{"shapes": [{"id": "x", "points": [[0,0],[1,0],[0,1]], "opacity": 2}]}"#;
+    let e = Drawing::from_bytes(bad, Format::Json, "d.json", "d").unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("d.json (shape 1 'x'): \"opacity\" must be a number in [0, 1]"),
+        "{e}"
+    );
+    let dup = br#"{"shapes": [{"id": "x", "points": [[0,0],[1,0],[0,1]]}, {"id": "x", "points": [[0,0],[1,0],[0,1]]}]}"#;
+    let e = Drawing::from_bytes(dup, Format::Json, "d.json", "d").unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "d.json: shapes 1 and 2 share the id 'x'; give every shape its own id"
+    );
+    let flat = br#"{"shapes": [{"id": "f", "points": [[0,0],[1,0],[2,0]]}]}"#;
+    let e = Drawing::from_bytes(flat, Format::Json, "d.json", "d").unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("d.json (shape 1 'f'): all 3 points"),
+        "{e}"
+    );
+    // A plain curve is a drawing of one shape.
+    let one = Drawing::read_path(curve("square.json")).unwrap();
+    assert!(one.single_curve && one.shapes.len() == 1);
+}
+
+/// Where one curve is expected, a file of several parts is refused naming
+/// them; a drawing of one shape is that curve.
+#[test]
+fn curve_readers_refuse_several_parts() {
+    let two = svg(
+        r#"<rect id="a" width="10" height="10"/><path d="M 20 0 L 30 0 L 30 10 Z M 40 0 L 50 0 L 50 10 Z"/>"#,
+    );
+    let e = Curve::from_bytes(&two, Format::Svg, "two.svg", "two").unwrap_err();
+    assert!(
+        matches!(e, CurveError::SeveralParts { count: 3, .. }),
+        "{e}"
+    );
+    assert_eq!(
+        e.to_string(),
+        "two.svg: 3 closed shapes (path 'a', path 2 subpath 1, path 2 subpath 2), not one curve; read it as a drawing (`immerse check`, `immerse morph`) or keep one shape"
+    );
+    let json = br#"{"shapes": [{"id": "a", "points": [[0,0],[1,0],[0,1]]}, {"points": [[0,0],[1,0],[0,1]]}]}"#;
+    let e = Curve::from_bytes(json, Format::Json, "two.json", "two").unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "two.json: 2 closed shapes (shape 1 'a', shape 2), not one curve; read it as a drawing (`immerse check`, `immerse morph`) or keep one shape"
+    );
+    let one = br#"{"shapes": [{"id": "a", "points": [[0,0],[1,0],[0,1]]}]}"#;
+    assert_eq!(
+        Curve::from_bytes(one, Format::Json, "one.json", "one")
+            .unwrap()
+            .len(),
+        3
+    );
+}

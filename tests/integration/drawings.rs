@@ -285,3 +285,70 @@ fn curve_readers_refuse_several_parts() {
         3
     );
 }
+
+const TWO_SHAPES: &str = r##"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100"><rect id="body" x="0" y="0" width="40" height="40" fill="#3366cc"/><path id="eight" d="M 50 50 L 60 60 L 60 50 L 50 60 Z" fill="red"/></svg>"##;
+
+/// `check` answers a drawing shape by shape; `triangulate` and a key of
+/// `animate`, which need one curve, refuse it naming its parts.
+#[test]
+fn commands_never_read_one_part_of_a_drawing() {
+    use crate::util::{immerse_in, stderr, stdout};
+    let d = tempfile::tempdir().unwrap();
+    std::fs::write(d.path().join("two.svg"), TWO_SHAPES).unwrap();
+    std::fs::write(
+        d.path().join("good.svg"),
+        TWO_SHAPES.replace(
+            "M 50 50 L 60 60 L 60 50 L 50 60 Z",
+            "M 50 50 L 60 50 L 60 60 Z",
+        ),
+    )
+    .unwrap();
+    let out = immerse_in(d.path(), &["check", "two.svg"]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert_eq!(
+        stdout(&out),
+        "two.svg: a drawing of 2 shapes: 1 of 2 not self-overlapping\n  \
+         shape 1 (path 'body'): self-overlapping, 4 points, clockwise as given (reversed)\n  \
+         shape 2 (path 'eight'): not self-overlapping (turning number is 0, not 1), 4 points\n"
+    );
+    let out = immerse_in(d.path(), &["check", "good.svg", "--json=r.json"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let r: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(d.path().join("r.json")).unwrap()).unwrap();
+    assert_eq!(r["self_overlapping"], true);
+    assert_eq!(r["shapes"].as_array().unwrap().len(), 2);
+    assert_eq!(r["shapes"][1]["id"], "eight");
+    assert_eq!(r["shapes"][1]["points"], 3);
+    let refusal = "two.svg: 2 closed shapes (path 'body', path 'eight'), not one curve; read it as a drawing (`immerse check`, `immerse morph`) or keep one shape";
+    let out = immerse_in(d.path(), &["triangulate", "two.svg"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(stderr(&out), format!("immerse: {refusal}\n"));
+    let square = curve("square.json");
+    let out = immerse_in(
+        d.path(),
+        &[
+            "animate",
+            square.to_str().unwrap(),
+            "two.svg",
+            "-o",
+            "a.gif",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains(refusal), "{}", stderr(&out));
+    // A hole is bad input for check too.
+    std::fs::write(
+        d.path().join("ring.svg"),
+        format!(
+            r#"<svg xmlns="http://www.w3.org/2000/svg"><path d="{SQUARE_CCW} M 30 30 L 70 30 L 70 70 L 30 70 Z"/></svg>"#
+        ),
+    )
+    .unwrap();
+    let out = immerse_in(d.path(), &["check", "ring.svg"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("shape 2 (path 1 subpath 2) is a hole in shape 1"),
+        "{}",
+        stderr(&out)
+    );
+}

@@ -167,7 +167,7 @@ pub(crate) enum SvgKeysArg {
     Auto,
     /// Each closed shape, in document order.
     Shapes,
-    /// The first closed shape of each top-level group or layer.
+    /// The closed shape of each top-level group or layer (a group of several closed shapes is refused, naming them).
     Groups,
 }
 
@@ -449,14 +449,17 @@ pub(crate) struct DemoArgs {
 /// Arguments of `immerse check`.
 #[derive(Debug, Args)]
 pub(crate) struct CheckArgs {
-    /// The curve file (.json, .txt, .csv, .xy or .svg).
+    /// The curve file (.json, .txt, .csv, .xy or .svg); a drawing of
+    /// several shapes is answered shape by shape (yes when every shape is
+    /// self-overlapping).
     pub(crate) curve: PathBuf,
     /// Write one JSON object instead of text: bare --json prints it on
     /// stdout, --json=FILE writes FILE ("-" or /dev/stdout: stdout).
     ///
     /// Fields: points (count after cleaning), turning_number (of the curve
     /// as given), simple, reversed, self_overlapping, reason (null when
-    /// self-overlapping).
+    /// self-overlapping). For a drawing: self_overlapping (every shape),
+    /// notices, and shapes, each with id, label and those fields.
     #[arg(long, value_name = "FILE", num_args = 0..=1, require_equals = true, default_missing_value = "-")]
     pub(crate) json: Option<PathBuf>,
     /// Replace an existing --json file.

@@ -23,10 +23,16 @@
 
 mod holes;
 mod json;
+mod matching;
 mod style;
 mod svg;
+mod tween;
 
+pub use matching::{MatchMode, Matching, UNMATCHED_COST, match_shapes};
 pub use style::{Color, FillRule, Style};
+pub use tween::{
+    DrawingFrame, DrawingTween, DrawingTweenError, FrameShape, GROWN_SCALE, ShapeRole,
+};
 
 use crate::curve::{Curve, CurveError, Format, MAX_FILE_BYTES};
 use crate::geom::Point;

@@ -174,17 +174,22 @@ impl Default for Style {
 }
 
 impl Style {
-    /// The style at `t` between `self` and `other`: colours on a straight
-    /// line in OKLab, opacity and stroke width linearly. A colour present
-    /// on one side only keeps that colour and fades its opacity (carried
-    /// in the colour's own weight: the absent side is the present colour at
-    /// zero width for strokes, and fill is kept until t = 1 / from t = 0).
-    /// The fill rule is the source's until the last frame.
+    /// The style at `t` between `self` (t ≤ 0, exactly) and `other`
+    /// (t ≥ 1, exactly): colours on a straight line in OKLab, opacity
+    /// linearly. A colour on one side only is kept as it is in between
+    /// (a stroke's width then grows from or shrinks to zero). The stroke
+    /// width is linear; the fill rule is the source's until the end.
     pub fn lerp(&self, other: &Style, t: f64) -> Style {
+        if t <= 0.0 {
+            return *self;
+        }
+        if t >= 1.0 {
+            return *other;
+        }
         let colour = |a: Option<Color>, b: Option<Color>| match (a, b) {
             (Some(a), Some(b)) => Some(a.lerp(b, t)),
-            (Some(a), None) => (t < 1.0).then_some(a),
-            (None, Some(b)) => (t > 0.0).then_some(b),
+            (Some(a), None) => Some(a),
+            (None, Some(b)) => Some(b),
             (None, None) => None,
         };
         let width = |a: &Style| {
@@ -199,11 +204,7 @@ impl Style {
             stroke: colour(self.stroke, other.stroke),
             stroke_width: width(self) + t * (width(other) - width(self)),
             opacity: self.opacity + t * (other.opacity - self.opacity),
-            fill_rule: if t < 1.0 {
-                self.fill_rule
-            } else {
-                other.fill_rule
-            },
+            fill_rule: self.fill_rule,
         }
     }
 }

@@ -352,3 +352,94 @@ fn commands_never_read_one_part_of_a_drawing() {
         stderr(&out)
     );
 }
+
+/// Three shapes and the same three moved a little, listed in another
+/// order: by id and by auto the right pairs, by order the listed ones.
+/// The source's fourth shape, far off, has no partner.
+fn shuffled() -> (Drawing, Drawing) {
+    let a = read(
+        r#"<rect id="sq" x="10" y="10" width="30" height="30"/>
+        <polygon id="tri" points="80,40 110,40 95,10"/>
+        <circle id="dot" cx="160" cy="25" r="15"/>
+        <rect id="far" x="170" y="170" width="20" height="10"/>"#,
+    )
+    .unwrap();
+    let b = read(
+        r#"<circle id="dot" cx="165" cy="30" r="14"/>
+        <rect id="sq" x="15" y="12" width="28" height="32"/>
+        <polygon id="tri" points="82,42 112,44 96,12"/>"#,
+    )
+    .unwrap();
+    (a, b)
+}
+
+#[test]
+fn matching_by_id_order_and_auto() {
+    use immerse::drawing::{MatchMode, match_shapes};
+    let (a, b) = shuffled();
+    let by_id = match_shapes(&a, &b, MatchMode::Id);
+    assert_eq!(by_id.pairs, [(0, 1), (1, 2), (2, 0)]);
+    assert_eq!(by_id.vanishing, [3]);
+    assert!(by_id.appearing.is_empty());
+    let by_order = match_shapes(&a, &b, MatchMode::Order);
+    assert_eq!(by_order.pairs, [(0, 0), (1, 1), (2, 2)]);
+    assert_eq!(by_order.vanishing, [3]);
+    let auto = match_shapes(&a, &b, MatchMode::Auto);
+    assert_eq!(auto.pairs, by_id.pairs, "{auto:?}");
+    assert_eq!(auto.vanishing, [3]);
+    // The right pairs cost less than the listed ones.
+    let total = |m: &immerse::drawing::Matching| m.costs.iter().sum::<f64>();
+    assert!(total(&auto) < total(&by_order));
+    // Swapped, the far shape appears instead.
+    let back = match_shapes(&b, &a, MatchMode::Auto);
+    assert_eq!(back.pairs, [(0, 2), (1, 0), (2, 1)]);
+    assert_eq!(back.appearing, [3]);
+}
+
+/// Every shape of every frame is an immersed disk (the independent
+/// checker); the ends are the drawings; a vanishing shape shrinks by a
+/// similarity to GROWN_SCALE and fades out, an appearing one the reverse.
+#[test]
+fn drawing_tween_frames_are_immersions_with_growing_and_fading_shapes() {
+    use immerse::drawing::{DrawingTween, GROWN_SCALE, MatchMode, ShapeRole, match_shapes};
+    use immerse::morph::CurveMorphOptions;
+    let (a, b) = shuffled();
+    for (src, dst) in [(&a, &b), (&b, &a)] {
+        let m = match_shapes(src, dst, MatchMode::Auto);
+        let tween = DrawingTween::new(src, dst, &m, &CurveMorphOptions::DEFAULT).unwrap();
+        assert_eq!(tween.shape_count(), 4);
+        for k in 0..=10 {
+            let t = f64::from(k) / 10.0;
+            let f = tween.frame(t).unwrap();
+            for s in &f.shapes {
+                immerse::immersion::check(&s.points, &s.triangles).unwrap();
+                let other = match s.role {
+                    ShapeRole::Vanishing => 1.0 - t,
+                    ShapeRole::Appearing => t,
+                    ShapeRole::Matched => 1.0,
+                };
+                assert!((s.style.opacity - other).abs() < 1e-12, "{t} {:?}", s.role);
+            }
+        }
+        let (first, last) = (tween.frame(0.0).unwrap(), tween.frame(1.0).unwrap());
+        let lone = first
+            .shapes
+            .iter()
+            .position(|s| s.role != ShapeRole::Matched)
+            .unwrap();
+        assert_eq!(first.shapes[lone].id, "far");
+        let area = |p: &[immerse::Point]| immerse::geom::polygon::signed_area(p);
+        let ratio = area(&last.shapes[lone].points) / area(&first.shapes[lone].points);
+        let expected = if first.shapes[lone].role == ShapeRole::Vanishing {
+            GROWN_SCALE * GROWN_SCALE
+        } else {
+            1.0 / (GROWN_SCALE * GROWN_SCALE)
+        };
+        assert!((ratio / expected - 1.0).abs() < 1e-9, "{ratio}");
+        // Matched shapes end as the target's shapes, styles included.
+        for s in last.shapes.iter().filter(|s| s.role == ShapeRole::Matched) {
+            let target = dst.shapes.iter().find(|t| t.id == s.id).unwrap();
+            assert_eq!(s.style, target.style);
+        }
+    }
+}

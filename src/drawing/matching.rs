@@ -102,33 +102,19 @@ fn assign(fa: &[Features], fb: &[Features]) -> Vec<(usize, usize)> {
     let alone = units(UNMATCHED_COST);
     // A dummy row or column for another shape: never chosen.
     let forbidden = alone.saturating_mul(1_000_000);
-    let mut w = Vec::with_capacity(n * n);
-    for i in 0..n {
-        for j in 0..n {
-            let cost = match (i < na, j < nb) {
-                (true, true) => units(fa[i].cost(&fb[j])),
-                // Source i unmatched (only its own column), target j
-                // unmatched (only its own row), or both dummies.
-                (true, false) => {
-                    if j - nb == i {
-                        alone
-                    } else {
-                        forbidden
-                    }
-                }
-                (false, true) => {
-                    if i - na == j {
-                        alone
-                    } else {
-                        forbidden
-                    }
-                }
-                (false, false) => 0,
-            };
-            // kuhn_munkres maximises.
-            w.push(-cost);
-        }
-    }
+    let cost = |i: usize, j: usize| match (i < na, j < nb) {
+        (true, true) => units(fa[i].cost(&fb[j])),
+        // Source i unmatched (only its own dummy column), target j
+        // unmatched (only its own dummy row), or two dummies.
+        (true, false) if j - nb == i => alone,
+        (false, true) if i - na == j => alone,
+        (false, false) => 0,
+        _ => forbidden,
+    };
+    // kuhn_munkres maximises.
+    let w: Vec<i64> = (0..n)
+        .flat_map(|i| (0..n).map(move |j| -cost(i, j)))
+        .collect();
     let Ok(matrix) = pathfinding::matrix::Matrix::from_vec(n, n, w) else {
         return Vec::new();
     };

@@ -208,6 +208,28 @@ pub fn svg_frame(
         }
     }
     out.push_str("</g>\n");
+    for layer in &frame.layers {
+        let d = path_data(&layer.outline, &pts, true);
+        if d.is_empty() {
+            continue;
+        }
+        let paint = |c: Option<crate::Rgba>| {
+            c.map_or(("none".to_string(), 1.0), |c| {
+                (c.hex_rgb(), f64::from(c.a) / 255.0)
+            })
+        };
+        let (fill, fill_alpha) = paint(layer.fill);
+        let (stroke, stroke_alpha) = paint(layer.stroke);
+        let _ = writeln!(
+            out,
+            "<path d=\"{d}\" fill=\"{fill}\" fill-opacity=\"{:.3}\" fill-rule=\"{}\" stroke=\"{stroke}\" stroke-opacity=\"{:.3}\" stroke-width=\"{:.3}\" stroke-linejoin=\"round\" opacity=\"{:.3}\"/>",
+            fill_alpha,
+            if layer.evenodd { "evenodd" } else { "nonzero" },
+            stroke_alpha,
+            layer.stroke_width * view.scale(),
+            layer.opacity.clamp(0.0, 1.0),
+        );
+    }
 
     onion_paths(&mut out, onion, view, style);
 

@@ -443,3 +443,91 @@ fn drawing_tween_frames_are_immersions_with_growing_and_fading_shapes() {
         }
     }
 }
+
+/// `immerse morph` on drawings: the matching in the summary and the JSON,
+/// every shape of every JSON frame an immersed disk, styles carried into
+/// the SVG frames; animated SVG and Lottie refused for now.
+#[test]
+fn morph_drawings_reports_matching_and_draws_every_shape_with_its_style() {
+    use crate::util::{immerse_in, stderr};
+    let d = tempfile::tempdir().unwrap();
+    let a = curve("drawings/creature-a.svg");
+    let b = curve("drawings/creature-b.svg");
+    let (a, b) = (a.to_str().unwrap(), b.to_str().unwrap());
+    let out = immerse_in(
+        d.path(),
+        &[
+            "morph",
+            a,
+            b,
+            "--frames",
+            "5",
+            "--match",
+            "id",
+            "--json=m.json",
+            "-o",
+            "f",
+            "--format",
+            "svg",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains(
+            "matching (id): 'body' → 'body', 'shell' → 'shell', 'eye' → 'eye', 'horn' vanishes, 'hat' appears"
+        ),
+        "{}",
+        stderr(&out)
+    );
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(d.path().join("m.json")).unwrap()).unwrap();
+    assert_eq!(json["matching"]["mode"], "id");
+    assert_eq!(json["matching"]["vanishing"], serde_json::json!([2]));
+    assert_eq!(json["matching"]["appearing"], serde_json::json!([3]));
+    let frames = json["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 5);
+    for f in frames {
+        let shapes = f["shapes"].as_array().unwrap();
+        assert_eq!(shapes.len(), 5);
+        for s in shapes {
+            let points: Vec<immerse::Point> = s["points"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|p| immerse::Point::new(p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
+                .collect();
+            let triangles: Vec<[u32; 3]> = serde_json::from_value(s["triangles"].clone()).unwrap();
+            immerse::immersion::check(&points, &triangles).unwrap();
+        }
+    }
+    // The first SVG frame paints the source's shapes in order with their
+    // colours; the last the target's.
+    let first = std::fs::read_to_string(d.path().join("f/frame_0000.svg")).unwrap();
+    let fills: Vec<&str> = first
+        .match_indices(" fill=\"#")
+        .map(|(i, _)| &first[i + 7..i + 14])
+        .collect();
+    assert!(
+        fills.ends_with(&["#f2cc8f", "#e07a5f", "#f2cc8f", "#3d405b", "#f2cc8f"]),
+        "{fills:?}"
+    );
+    let last = std::fs::read_to_string(d.path().join("f/frame_0004.svg")).unwrap();
+    assert!(
+        last.contains("fill=\"#81b29a\""),
+        "the target body's colour"
+    );
+    assert!(
+        last.contains("stroke=\"#f4f1de\""),
+        "the target shell's stroke"
+    );
+    let out = immerse_in(
+        d.path(),
+        &["morph", a, b, "-o", "a.json", "--format", "lottie"],
+    );
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("not written for drawings yet"),
+        "{}",
+        stderr(&out)
+    );
+}

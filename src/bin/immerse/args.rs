@@ -160,6 +160,17 @@ pub(crate) struct CertifyArgs {
     pub(crate) force: bool,
 }
 
+/// How the shapes of two drawings are paired.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum MatchArg {
+    /// The same id; shapes without a partner appear or vanish.
+    Id,
+    /// The k-th shape with the k-th.
+    Order,
+    /// The least total cost of position, size and outline.
+    Auto,
+}
+
 /// Which shapes of one SVG drawing are the keys.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum SvgKeysArg {
@@ -591,6 +602,10 @@ pub(crate) struct MorphArgs {
     /// Number of frames, including the two ends.
     #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(2..=100_000))]
     pub(crate) frames: u32,
+    /// For drawings (files of several shapes): which shape of the source
+    /// becomes which of the target (docs/design.md §2b).
+    #[arg(long = "match", value_enum, default_value_t = MatchArg::Auto)]
+    pub(crate) match_mode: MatchArg,
     /// How each triangle's third vertex travels.
     #[arg(long, value_enum, default_value_t = PathArg::Rigid)]
     pub(crate) path: PathArg,

@@ -520,6 +520,28 @@ fn morph_drawings_reports_matching_and_draws_every_shape_with_its_style() {
         last.contains("stroke=\"#f4f1de\""),
         "the target shell's stroke"
     );
+    // The animated SVG: one path per shape, its outline, colours and
+    // opacity animated from the source's to the target's.
+    let out = immerse_in(
+        d.path(),
+        &[
+            "morph", a, b, "--frames", "4", "--match", "id", "-o", "a.svg",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let svg = std::fs::read_to_string(d.path().join("a.svg")).unwrap();
+    assert_eq!(svg.matches("<path ").count(), 5);
+    assert_eq!(svg.matches("attributeName=\"d\"").count(), 5);
+    let body_fill = svg.find("attributeName=\"fill\"").unwrap();
+    let values = &svg[body_fill..body_fill + svg[body_fill..].find("/>").unwrap()];
+    assert!(
+        values.contains("values=\"#f2cc8f;") && values.ends_with(";#81b29a\""),
+        "{values}"
+    );
+    assert!(
+        svg.contains("values=\"1.000;0.667;0.333;0.000\""),
+        "the horn fades out"
+    );
     let out = immerse_in(
         d.path(),
         &["morph", a, b, "-o", "a.json", "--format", "lottie"],

@@ -60,10 +60,10 @@ pub(crate) fn run(
     options: &CurveMorphOptions,
 ) -> anyhow::Result<Outcome> {
     if let Some(images) = &images
-        && matches!(images.format, FormatArg::AnimatedSvg | FormatArg::Lottie)
+        && images.format == FormatArg::Lottie
     {
         anyhow::bail!(
-            "-o {}: animated SVG and Lottie are not written for drawings yet; use --format png, gif, sheet or svg",
+            "-o {}: Lottie is not written for drawings yet; use --format png, gif, sheet, svg or animated-svg",
             args.output
                 .as_deref()
                 .unwrap_or(std::path::Path::new("-"))

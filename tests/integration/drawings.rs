@@ -542,14 +542,38 @@ fn morph_drawings_reports_matching_and_draws_every_shape_with_its_style() {
         svg.contains("values=\"1.000;0.667;0.333;0.000\""),
         "the horn fades out"
     );
+    // Lottie: one shape group per shape (top first) with its own fill and
+    // stroke, then the background; the body's fill runs to the target's.
     let out = immerse_in(
         d.path(),
-        &["morph", a, b, "-o", "a.json", "--format", "lottie"],
+        &[
+            "morph", a, b, "--frames", "4", "--match", "id", "-o", "a.json", "--format", "lottie",
+        ],
     );
-    assert_eq!(out.status.code(), Some(2));
-    assert!(
-        stderr(&out).contains("not written for drawings yet"),
-        "{}",
-        stderr(&out)
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let lottie: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(d.path().join("a.json")).unwrap()).unwrap();
+    let groups = lottie["layers"][0]["shapes"].as_array().unwrap();
+    let names: Vec<&str> = groups.iter().map(|g| g["nm"].as_str().unwrap()).collect();
+    assert_eq!(
+        names,
+        [
+            "Shape 5",
+            "Shape 4",
+            "Shape 3",
+            "Shape 2",
+            "Shape 1",
+            "Background"
+        ]
     );
+    let body = groups[4]["it"].as_array().unwrap();
+    let fill = body.iter().find(|i| i["ty"] == "fl").unwrap();
+    let keys = fill["c"]["k"].as_array().unwrap();
+    let rgb = |v: &serde_json::Value| {
+        let c = v["s"].as_array().unwrap();
+        [0, 1, 2].map(|i| (c[i].as_f64().unwrap() * 255.0).round() as u8)
+    };
+    assert_eq!(rgb(&keys[0]), [0xf2, 0xcc, 0x8f]);
+    assert_eq!(rgb(keys.last().unwrap()), [0x81, 0xb2, 0x9a]);
+    assert!(body.iter().any(|i| i["ty"] == "st"), "the body is stroked");
 }

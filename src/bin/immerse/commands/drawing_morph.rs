@@ -3,7 +3,7 @@
 
 use super::ImageOutput;
 use crate::Outcome;
-use crate::args::{FormatArg, MatchArg, MorphArgs};
+use crate::args::{MatchArg, MorphArgs};
 use crate::output;
 use anyhow::Context;
 use immerse::drawing::{
@@ -59,17 +59,6 @@ pub(crate) fn run(
     images: Option<ImageOutput>,
     options: &CurveMorphOptions,
 ) -> anyhow::Result<Outcome> {
-    if let Some(images) = &images
-        && images.format == FormatArg::Lottie
-    {
-        anyhow::bail!(
-            "-o {}: Lottie is not written for drawings yet; use --format png, gif, sheet, svg or animated-svg",
-            args.output
-                .as_deref()
-                .unwrap_or(std::path::Path::new("-"))
-                .display()
-        );
-    }
     let easing: render::Easing = args
         .easing
         .parse()

@@ -577,3 +577,65 @@ fn morph_drawings_reports_matching_and_draws_every_shape_with_its_style() {
     assert_eq!(rgb(keys.last().unwrap()), [0x81, 0xb2, 0x9a]);
     assert!(body.iter().any(|i| i["ty"] == "st"), "the body is stroked");
 }
+
+/// JSON drawing of `shapes` (id, points).
+fn json_drawing(shapes: &[(String, Vec<immerse::Point>)]) -> Drawing {
+    let items: Vec<serde_json::Value> = shapes
+        .iter()
+        .map(|(id, pts)| {
+            serde_json::json!({"id": id, "points": pts.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>()})
+        })
+        .collect();
+    let text = serde_json::json!({ "shapes": items }).to_string();
+    Drawing::from_bytes(text.as_bytes(), Format::Json, "p.json", "p").unwrap()
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::test_runner::Config {
+        cases: 48,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x2a_d7a3),
+        failure_persistence: None,
+        ..proptest::test_runner::Config::default()
+    })]
+
+    /// Shapes of different outlines set apart, then each moved by less
+    /// than a tenth of the spacing, scaled by at most 10% and the list
+    /// shuffled: auto matching pairs every shape with its own moved copy.
+    #[test]
+    fn auto_matching_finds_moved_shuffled_shapes(
+        count in 2usize..6,
+        moves in proptest::collection::vec((-1.0f64..1.0, -1.0f64..1.0, 0.9f64..1.1), 6),
+        order in proptest::strategy::Strategy::prop_shuffle(proptest::sample::subsequence((0..6).collect::<Vec<usize>>(), 6)),
+    ) {
+        use proptest::prelude::*;
+        use immerse::Point;
+        use immerse::drawing::{MatchMode, match_shapes};
+        // Regular k-gons (k = 3..8) on a row 100 apart, radius 20.
+        let shape = |k: usize, centre: Point, scale: f64| -> Vec<Point> {
+            (0..k + 3)
+                .map(|i| {
+                    let a = std::f64::consts::TAU * i as f64 / (k + 3) as f64;
+                    centre + scale * 20.0 * Point::new(a.cos(), a.sin())
+                })
+                .collect()
+        };
+        let a: Vec<(String, Vec<Point>)> = (0..count)
+            .map(|k| (format!("s{k}"), shape(k, Point::new(100.0 * k as f64, 0.0), 1.0)))
+            .collect();
+        let b: Vec<(String, Vec<Point>)> = order
+            .iter()
+            .filter(|&&k| k < count)
+            .map(|&k| {
+                let (dx, dy, s) = moves[k];
+                let c = Point::new(100.0 * k as f64 + 10.0 * dx, 10.0 * dy);
+                (format!("s{k}"), shape(k, c, s))
+            })
+            .collect();
+        let (da, db) = (json_drawing(&a), json_drawing(&b));
+        let auto = match_shapes(&da, &db, MatchMode::Auto);
+        let by_id = match_shapes(&da, &db, MatchMode::Id);
+        prop_assert_eq!(&auto.pairs, &by_id.pairs);
+        prop_assert_eq!(auto.pairs.len(), count);
+        prop_assert!(auto.vanishing.is_empty() && auto.appearing.is_empty());
+    }
+}

@@ -54,6 +54,7 @@
 pub mod certify;
 pub mod correspond;
 pub mod curve;
+pub mod drawing;
 pub mod error;
 pub mod flip;
 pub mod frames;

@@ -43,6 +43,27 @@ pub struct Frame {
     /// Marker positions in world coordinates (e.g. the pivot vertex), drawn
     /// as dots when [`Style::markers`](crate::Style::markers) is on.
     pub markers: Vec<[f64; 2]>,
+    /// The shapes of a drawing, bottom first, each painted with its own
+    /// style over the frame's own fill (which a drawing leaves empty).
+    pub layers: Vec<Layer>,
+}
+
+/// One styled shape of a drawing frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Layer {
+    /// The shape's closed boundary, as indices into the frame's `points`.
+    pub outline: Vec<u32>,
+    /// Fill colour (its alpha is multiplied by `opacity`); `None`: not
+    /// filled.
+    pub fill: Option<crate::Rgba>,
+    /// Stroke colour; `None`: not stroked.
+    pub stroke: Option<crate::Rgba>,
+    /// Stroke width in world units (scaled with the view).
+    pub stroke_width: f64,
+    /// Opacity in [0, 1] of the whole shape.
+    pub opacity: f64,
+    /// True for the even-odd fill rule, false for nonzero.
+    pub evenodd: bool,
 }
 
 impl Frame {
@@ -75,6 +96,11 @@ impl Frame {
         for t in &self.triangles {
             for &i in t {
                 check("triangle", i, n)?;
+            }
+        }
+        for layer in &self.layers {
+            for &i in &layer.outline {
+                check("layer outline", i, n)?;
             }
         }
         for &i in &self.outline {

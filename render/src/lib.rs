@@ -67,7 +67,7 @@ mod view;
 
 pub use easing::{Easing, frame_times};
 pub use error::RenderError;
-pub use frame::Frame;
+pub use frame::{Frame, Layer};
 pub use io::{
     Destination, NewOutputDir, OutputFile, check_output_dir, check_output_file, frame_file_name,
     is_stdout, remove_partial_outputs, resolve_output, write_atomic,

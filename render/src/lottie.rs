@@ -205,6 +205,9 @@ pub fn lottie(
     if frames.is_empty() {
         return Err(RenderError::NoFrames);
     }
+    if !frames[0].layers.is_empty() {
+        return lottie_layers(frames, style, fps, looping);
+    }
     let played: Vec<Frame> = looping
         .sequence(frames.len())
         .into_iter()
@@ -323,6 +326,142 @@ pub fn lottie_keys(keys: &Keys<'_>, style: &Style, fps: f64) -> Result<String, R
     let layer_ks = r#"{"o":{"a":0,"k":100},"r":{"a":0,"k":0},"p":{"a":0,"k":[0,0,0]},"a":{"a":0,"k":[0,0,0]},"s":{"a":0,"k":[100,100,100]}}"#;
     Ok(format!(
         "{{\"v\":\"5.7.4\",\"nm\":\"immerse\",\"fr\":{fr},\"ip\":0,\"op\":{total},\"w\":{w},\"h\":{h},\"ddd\":0,\"assets\":[],\"layers\":[{{\"ddd\":0,\"ind\":1,\"ty\":4,\"nm\":\"immerse morph\",\"sr\":1,\"ks\":{layer_ks},\"ao\":0,\"ip\":0,\"op\":{total},\"st\":0,\"bm\":0,\"shapes\":[{}]}}],\"markers\":[]}}\n",
+        groups.join(",")
+    ))
+}
+
+/// A Lottie document of a drawing's frames (each with the same layers,
+/// of the same outline lengths): one shape group per layer, top layer
+/// first as Lottie lists them, each with its animated path, its fill
+/// (with the layer's own fill rule, painting only the shape: no
+/// overlap-depth shading that could cover the shapes below), its stroke
+/// and its opacity, keyed at every played frame and interpolated
+/// linearly; then the background.
+fn lottie_layers(
+    frames: &[Frame],
+    style: &Style,
+    fps: f64,
+    looping: Loop,
+) -> Result<String, RenderError> {
+    check_fps(fps)?;
+    style.check_size()?;
+    let first = &frames[0];
+    for (i, f) in frames.iter().enumerate() {
+        f.check_indices()?;
+        let same = f.layers.len() == first.layers.len()
+            && f.layers
+                .iter()
+                .zip(&first.layers)
+                .all(|(a, b)| a.outline.len() == b.outline.len());
+        if !same {
+            return Err(RenderError::OutlineMismatch {
+                frame: i,
+                expected: first.layers.len(),
+                found: f.layers.len(),
+            });
+        }
+    }
+    let view = View::fit(frames, style);
+    let played: Vec<&Frame> = looping
+        .sequence(frames.len())
+        .into_iter()
+        .map(|i| &frames[i])
+        .collect();
+    let total = played.len();
+    // An animated property from one value per played frame.
+    let animated = |values: Vec<String>| {
+        if values.len() == 1 {
+            return format!("{{\"a\":0,\"k\":{}}}", values[0]);
+        }
+        let keys: Vec<String> = values
+            .iter()
+            .enumerate()
+            .map(|(t, v)| {
+                if t + 1 == values.len() {
+                    format!("{{\"t\":{t},\"s\":{v}}}")
+                } else {
+                    format!(
+                        "{{\"t\":{t},\"s\":{v},\"i\":{{\"x\":1,\"y\":1}},\"o\":{{\"x\":0,\"y\":0}}}}"
+                    )
+                }
+            })
+            .collect();
+        format!("{{\"a\":1,\"k\":[{}]}}", keys.join(","))
+    };
+    let mut groups = Vec::new();
+    for k in (0..first.layers.len()).rev() {
+        let mut paths = Vec::with_capacity(total);
+        for f in &played {
+            let layer = &f.layers[k];
+            let mut pts = Vec::with_capacity(layer.outline.len());
+            for &i in &layer.outline {
+                let q = view.to_pixel(f.points[i as usize]);
+                if !(q[0].is_finite() && q[1].is_finite()) {
+                    return Err(RenderError::NonFinitePoint { index: i });
+                }
+                pts.push(q);
+            }
+            let mut v = String::from("[");
+            path_value(&mut v, &pts);
+            v.push(']');
+            paths.push(v);
+        }
+        let colour = |c: Option<Rgba>| {
+            let c = c.unwrap_or(style.background);
+            color(c)
+        };
+        let l0 = &first.layers[k];
+        let mut items = vec![format!(
+            "{{\"ty\":\"sh\",\"nm\":\"Outline\",\"ks\":{}}}",
+            animated(paths)
+        )];
+        if l0.stroke.is_some() {
+            items.push(format!(
+                "{{\"ty\":\"st\",\"nm\":\"Stroke\",\"c\":{},\"o\":{{\"a\":0,\"k\":100}},\"w\":{},\"lc\":2,\"lj\":2,\"ml\":4}}",
+                animated(played.iter().map(|f| colour(f.layers[k].stroke)).collect()),
+                animated(
+                    played
+                        .iter()
+                        .map(|f| format!("[{}]", f.layers[k].stroke_width * view.scale()))
+                        .collect()
+                ),
+            ));
+        }
+        if l0.fill.is_some() {
+            items.push(format!(
+                "{{\"ty\":\"fl\",\"nm\":\"Fill\",\"c\":{},\"o\":{{\"a\":0,\"k\":100}},\"r\":{}}}",
+                animated(played.iter().map(|f| colour(f.layers[k].fill)).collect()),
+                if l0.evenodd { 2 } else { 1 },
+            ));
+        }
+        let opacity = animated(
+            played
+                .iter()
+                .map(|f| format!("[{}]", percent(f.layers[k].opacity)))
+                .collect(),
+        );
+        items.push(format!(
+            "{{\"ty\":\"tr\",\"nm\":\"Transform\",\"p\":{{\"a\":0,\"k\":[0,0]}},\"a\":{{\"a\":0,\"k\":[0,0]}},\"s\":{{\"a\":0,\"k\":[100,100]}},\"r\":{{\"a\":0,\"k\":0}},\"o\":{opacity},\"sk\":{{\"a\":0,\"k\":0}},\"sa\":{{\"a\":0,\"k\":0}}}}"
+        ));
+        groups.push(format!(
+            "{{\"ty\":\"gr\",\"nm\":\"Shape {}\",\"it\":[{}]}}",
+            k + 1,
+            items.join(",")
+        ));
+    }
+    let (w, h) = (style.width, style.height);
+    groups.push(format!(
+        "{{\"ty\":\"gr\",\"nm\":\"Background\",\"it\":[{{\"ty\":\"rc\",\"nm\":\"Rectangle\",\"d\":1,\"p\":{{\"a\":0,\"k\":[{},{}]}},\"s\":{{\"a\":0,\"k\":[{w},{h}]}},\"r\":{{\"a\":0,\"k\":0}}}},{},{}]}}",
+        f64::from(w) / 2.0,
+        f64::from(h) / 2.0,
+        fill("Background", style.background, style.background.opacity(), 1),
+        GROUP_TRANSFORM
+    ));
+    let mut fr = String::new();
+    num(&mut fr, fps);
+    let layer_ks = r#"{"o":{"a":0,"k":100},"r":{"a":0,"k":0},"p":{"a":0,"k":[0,0,0]},"a":{"a":0,"k":[0,0,0]},"s":{"a":0,"k":[100,100,100]}}"#;
+    Ok(format!(
+        "{{\"v\":\"5.7.4\",\"nm\":\"immerse\",\"fr\":{fr},\"ip\":0,\"op\":{total},\"w\":{w},\"h\":{h},\"ddd\":0,\"assets\":[],\"layers\":[{{\"ddd\":0,\"ind\":1,\"ty\":4,\"nm\":\"immerse drawing\",\"sr\":1,\"ks\":{layer_ks},\"ao\":0,\"ip\":0,\"op\":{total},\"st\":0,\"bm\":0,\"shapes\":[{}]}}],\"markers\":[]}}\n",
         groups.join(",")
     ))
 }

@@ -69,6 +69,7 @@ pub fn render(
     let pts: Vec<Option<(f32, f32)>> = frame.points.iter().map(|&p| view.to_pixel_f32(p)).collect();
 
     draw_fill(&mut pixmap, frame, &pts, style).ok_or_else(too_large)?;
+    draw_layers(&mut pixmap, frame, &pts, view, style);
 
     let mut paint = Paint {
         anti_alias: style.anti_alias,
@@ -142,6 +143,52 @@ pub fn render(
 
 /// Coverage-counts the triangles and faces, then shades `pixmap` by depth.
 /// `None` only if the scratch pixmap cannot be allocated.
+/// Paints a drawing's shapes, bottom first, each with its own style.
+fn draw_layers(
+    pixmap: &mut Pixmap,
+    frame: &Frame,
+    pts: &[Option<(f32, f32)>],
+    view: &View,
+    style: &Style,
+) {
+    let id = Transform::identity();
+    for layer in &frame.layers {
+        let Some(path) = loop_path(&layer.outline, pts, true) else {
+            continue;
+        };
+        let alpha = |c: crate::Rgba| {
+            let a = (f64::from(c.a) * layer.opacity.clamp(0.0, 1.0)).round() as u8;
+            tiny_skia::Color::from_rgba8(c.r, c.g, c.b, a)
+        };
+        let mut paint = Paint {
+            anti_alias: style.anti_alias,
+            ..Paint::default()
+        };
+        if let Some(fill) = layer.fill {
+            paint.set_color(alpha(fill));
+            let rule = if layer.evenodd {
+                FillRule::EvenOdd
+            } else {
+                FillRule::Winding
+            };
+            pixmap.fill_path(&path, &paint, rule, id, None);
+        }
+        let width = (layer.stroke_width * view.scale()) as f32;
+        if let Some(stroke) = layer.stroke
+            && width > 0.0
+        {
+            paint.set_color(alpha(stroke));
+            let stroke = Stroke {
+                width,
+                line_join: LineJoin::Round,
+                line_cap: LineCap::Round,
+                ..Stroke::default()
+            };
+            pixmap.stroke_path(&path, &paint, &stroke, id, None);
+        }
+    }
+}
+
 fn draw_fill(
     pixmap: &mut Pixmap,
     frame: &Frame,

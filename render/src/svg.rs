@@ -208,6 +208,28 @@ pub fn svg_frame(
         }
     }
     out.push_str("</g>\n");
+    for layer in &frame.layers {
+        let d = path_data(&layer.outline, &pts, true);
+        if d.is_empty() {
+            continue;
+        }
+        let paint = |c: Option<crate::Rgba>| {
+            c.map_or(("none".to_string(), 1.0), |c| {
+                (c.hex_rgb(), f64::from(c.a) / 255.0)
+            })
+        };
+        let (fill, fill_alpha) = paint(layer.fill);
+        let (stroke, stroke_alpha) = paint(layer.stroke);
+        let _ = writeln!(
+            out,
+            "<path d=\"{d}\" fill=\"{fill}\" fill-opacity=\"{:.3}\" fill-rule=\"{}\" stroke=\"{stroke}\" stroke-opacity=\"{:.3}\" stroke-width=\"{:.3}\" stroke-linejoin=\"round\" opacity=\"{:.3}\"/>",
+            fill_alpha,
+            if layer.evenodd { "evenodd" } else { "nonzero" },
+            stroke_alpha,
+            layer.stroke_width * view.scale(),
+            layer.opacity.clamp(0.0, 1.0),
+        );
+    }
 
     onion_paths(&mut out, onion, view, style);
 
@@ -301,6 +323,9 @@ pub fn animated_svg(
 ) -> Result<String, RenderError> {
     if frames.is_empty() {
         return Err(RenderError::NoFrames);
+    }
+    if !frames[0].layers.is_empty() {
+        return animated_layers(frames, style, fps, looping);
     }
     let played: Vec<Frame> = looping
         .sequence(frames.len())
@@ -417,6 +442,124 @@ pub fn animated_svg_keys(
         let _ = write!(out, "<use xlink:href=\"#{OUTLINE_ID}\"");
         stroke_attrs(&mut out, style.outline, style.outline_width);
         out.push_str("/>\n");
+    }
+    out.push_str("</svg>\n");
+    Ok(out)
+}
+
+/// An animated SVG of a drawing's frames (each with the same layers, of
+/// the same outline lengths): one path per layer, bottom first, whose
+/// `d`, fill, stroke, stroke width and opacity are animated linearly
+/// through every played frame.
+fn animated_layers(
+    frames: &[Frame],
+    style: &Style,
+    fps: f64,
+    looping: Loop,
+) -> Result<String, RenderError> {
+    check_fps(fps)?;
+    style.check_size()?;
+    let first = &frames[0];
+    for (i, f) in frames.iter().enumerate() {
+        f.check_indices()?;
+        if f.layers.len() != first.layers.len() {
+            return Err(RenderError::OutlineMismatch {
+                frame: i,
+                expected: first.layers.len(),
+                found: f.layers.len(),
+            });
+        }
+        for (a, b) in f.layers.iter().zip(&first.layers) {
+            if a.outline.len() != b.outline.len() {
+                return Err(RenderError::OutlineMismatch {
+                    frame: i,
+                    expected: b.outline.len(),
+                    found: a.outline.len(),
+                });
+            }
+        }
+    }
+    let view = View::fit(frames, style);
+    let played: Vec<&Frame> = looping
+        .sequence(frames.len())
+        .into_iter()
+        .map(|i| &frames[i])
+        .collect();
+    let dur = (played.len().max(2) - 1) as f64 / fps;
+    let key_times: Vec<String> = (0..played.len())
+        .map(|i| format!("{}", i as f64 / (played.len().max(2) - 1) as f64))
+        .collect();
+    let key_times = if played.len() == 1 {
+        "0;1".to_string()
+    } else {
+        key_times.join(";")
+    };
+    let repeat = if looping == Loop::Once {
+        "1"
+    } else {
+        "indefinite"
+    };
+    let values = |v: Vec<String>| {
+        if v.len() == 1 {
+            format!("{0};{0}", v[0])
+        } else {
+            v.join(";")
+        }
+    };
+    let colour = |c: Option<Rgba>| c.map_or_else(|| "none".to_string(), Rgba::hex_rgb);
+    let mut out = String::new();
+    header(&mut out, style);
+    for k in 0..first.layers.len() {
+        let mut ds = Vec::with_capacity(played.len());
+        for f in &played {
+            let pts = pixel_points(f, &view);
+            ds.push(path_data(&f.layers[k].outline, &pts, true));
+        }
+        let layer = |f: &&Frame| f.layers[k].clone();
+        let l0 = &first.layers[k];
+        let _ = writeln!(
+            out,
+            "<path d=\"{}\" fill=\"{}\" fill-rule=\"{}\" stroke=\"{}\" stroke-linejoin=\"round\">",
+            ds[0],
+            colour(l0.fill),
+            if l0.evenodd { "evenodd" } else { "nonzero" },
+            colour(l0.stroke),
+        );
+        let animate = |out: &mut String, attr: &str, v: Vec<String>| {
+            let _ = writeln!(
+                out,
+                "<animate attributeName=\"{attr}\" dur=\"{dur}s\" repeatCount=\"{repeat}\" fill=\"freeze\" calcMode=\"linear\" keyTimes=\"{key_times}\" values=\"{}\"/>",
+                values(v)
+            );
+        };
+        animate(&mut out, "d", ds);
+        animate(
+            &mut out,
+            "fill",
+            played.iter().map(|f| colour(layer(f).fill)).collect(),
+        );
+        animate(
+            &mut out,
+            "stroke",
+            played.iter().map(|f| colour(layer(f).stroke)).collect(),
+        );
+        animate(
+            &mut out,
+            "stroke-width",
+            played
+                .iter()
+                .map(|f| format!("{:.3}", layer(f).stroke_width * view.scale()))
+                .collect(),
+        );
+        animate(
+            &mut out,
+            "opacity",
+            played
+                .iter()
+                .map(|f| format!("{:.3}", layer(f).opacity.clamp(0.0, 1.0)))
+                .collect(),
+        );
+        out.push_str("</path>\n");
     }
     out.push_str("</svg>\n");
     Ok(out)

@@ -113,6 +113,19 @@ pub enum CurveError {
         /// The file.
         path: String,
     },
+    /// The file holds several closed shapes where one curve is expected:
+    /// it is a drawing (`crate::drawing`), not one curve.
+    #[error(
+        "{path}: {count} closed shapes ({parts}), not one curve; read it as a drawing (`immerse check`, `immerse morph`) or keep one shape"
+    )]
+    SeveralParts {
+        /// The file (and the group, for one key of a sequence).
+        path: String,
+        /// How many closed shapes it has.
+        count: usize,
+        /// Their names (`path 'ID'`, `path K subpath J`), the first few.
+        parts: String,
+    },
     /// A coordinate is NaN or infinite.
     #[error("{path}: point {index} ({place}) has a non-finite coordinate; give finite numbers")]
     NonFinite {

@@ -32,6 +32,32 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
         Value::Array(items) => (None, items),
         Value::Object(map) => {
             let name = map.get("name").and_then(Value::as_str).map(str::to_string);
+            if let (None, Some(Value::Array(shapes))) = (map.get("points"), map.get("shapes")) {
+                // A drawing (crate::drawing): one shape is one curve;
+                // several are refused, naming them.
+                if let [one] = shapes.as_slice()
+                    && let Some(points) = one.get("points")
+                {
+                    let mut raw = parse(points.to_string().as_bytes(), label)?;
+                    raw.name = name;
+                    return Ok(raw);
+                }
+                let names: Vec<String> = shapes
+                    .iter()
+                    .enumerate()
+                    .map(|(k, s)| match s.get("id").and_then(Value::as_str) {
+                        Some(id) if !id.is_empty() => {
+                            format!("shape {} '{}'", k + 1, super::error::one_line(id))
+                        }
+                        _ => format!("shape {}", k + 1),
+                    })
+                    .collect();
+                return Err(CurveError::SeveralParts {
+                    path: label.to_string(),
+                    count: names.len(),
+                    parts: super::svg::list_names(&names),
+                });
+            }
             match map.get("points") {
                 Some(Value::Array(items)) => (name, items),
                 Some(_) => return Err(shape(format!("\"points\" is not an array; {SHAPE}"))),

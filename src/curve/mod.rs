@@ -12,19 +12,21 @@
 //!   `[x, y]` pairs (y up);
 //! - text (`.txt`, `.xy`, `.csv`): one `x y` per line, separated by
 //!   whitespace or a comma, `#` starts a comment (y up);
-//! - SVG: the first closed subpath in document order of any `path`,
-//!   `polygon`, `rect`, `circle` or `ellipse`, with transforms applied,
+//! - SVG: the one closed subpath of a `path`, `polygon`, `rect`, `circle`
+//!   or `ellipse`, with transforms applied (a file of several is a
+//!   [`crate::drawing::Drawing`], refused here naming its parts),
 //!   Béziers flattened to [`SVG_FLATTEN_TOLERANCE`] of the shape's size,
 //!   and y flipped (SVG is y down).
 
 mod clean;
 mod error;
 mod json;
-mod svg;
+pub(crate) mod svg;
 mod text;
 
 pub use clean::{MAX_COORDINATE, MAX_POINTS, MIN_COORDINATE};
 pub use error::CurveError;
+pub(crate) use error::one_line as error_one_line;
 pub use svg::{MAX_SVG_PATH_NUMBER, MAX_SVG_SHAPES, SVG_FLATTEN_TOLERANCE, SvgShapes};
 
 use crate::geom::Point;
@@ -201,6 +203,12 @@ impl Curve {
         clean::build(name.to_string(), raw, false, name)
     }
 
+    /// Cleans and orients points as read (each with its 1-based place in
+    /// the source), naming `label` in errors.
+    pub(crate) fn from_raw(name: String, raw: RawCurve, label: &str) -> Result<Curve, CurveError> {
+        clean::build(name, raw.points, raw.lines, label)
+    }
+
     /// Number of vertices.
     pub fn len(&self) -> usize {
         self.points.len()
@@ -236,7 +244,7 @@ impl Curve {
 
 /// Reads a curve file through the [`MAX_FILE_BYTES`] cap
 /// ([`crate::input::read_capped`]: devices, FIFOs and pipes included).
-fn read_file(path: &Path, label: &str) -> Result<Vec<u8>, CurveError> {
+pub(crate) fn read_file(path: &Path, label: &str) -> Result<Vec<u8>, CurveError> {
     crate::input::read_capped(path, MAX_FILE_BYTES).map_err(|e| match e {
         ReadError::IsDirectory => CurveError::IsDirectory {
             path: label.to_string(),

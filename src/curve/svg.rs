@@ -1,8 +1,10 @@
 //! SVG curves, parsed with `usvg` (which turns `rect`, `circle`, `ellipse`,
 //! `polygon` and `path` elements into paths and resolves transforms).
 //!
-//! The curve is the first closed subpath in document order: a subpath that
-//! ends with `Z`, or whose last point equals its first. A drawing written by
+//! The curve is the one closed subpath of the drawing: a subpath that
+//! ends with `Z`, or whose last point equals its first. A drawing of
+//! several closed subpaths is refused ([`CurveError::SeveralParts`], naming
+//! them): it is read as a [`crate::drawing::Drawing`] instead. A drawing written by
 //! immerse (`immerse-render`) marks its outline path
 //! `id="immerse-outline"`, which is then read first, and its background
 //! rectangle `id="immerse-background"`, which is never read. Its control points
@@ -40,7 +42,7 @@ const OUTLINE_ID: &str = "immerse-outline";
 /// writes (`immerse_render::BACKGROUND_ID`): never read as the curve.
 const BACKGROUND_ID: &str = "immerse-background";
 
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 enum Seg {
     Line(Point),
     Quad(Point, Point),
@@ -52,7 +54,18 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
     let mut found = Vec::new();
     collect_closed(tree.root(), Some(OUTLINE_ID), &mut found, 1);
     if found.is_empty() {
-        collect_closed(tree.root(), None, &mut found, 1);
+        collect_closed(tree.root(), None, &mut found, MAX_SVG_SHAPES);
+        // Copies of one outline (as `<use>` makes to fill and stroke it
+        // apart) are one curve.
+        found.dedup();
+        if found.len() > 1 {
+            let parts = closed_part_names(tree.root());
+            return Err(CurveError::SeveralParts {
+                path: label.to_string(),
+                count: parts.len(),
+                parts: list_names(&parts),
+            });
+        }
     }
     let Some((start, segs)) = found.pop() else {
         if transforms_hide_a_shape(bytes) {
@@ -77,8 +90,8 @@ pub enum SvgShapes {
     Auto,
     /// Every closed subpath of every shape, in document order.
     Shapes,
-    /// The first closed subpath of each top-level group, in document
-    /// order. A group that is alone at its level (such as the one a
+    /// The closed subpath of each top-level group, in document
+    /// order (a group of several closed subpaths is refused, naming them). A group that is alone at its level (such as the one a
     /// `viewBox` or a wrapping `<g>` makes) is looked into.
     Groups,
 }
@@ -119,13 +132,23 @@ pub(crate) fn parse_all(
                 continue;
             };
             let mut found = Vec::new();
-            collect_closed(g, None, &mut found, 1);
+            collect_closed(g, None, &mut found, 2);
+            let name = if g.id().is_empty() {
+                format!("group {}", k + 1)
+            } else {
+                format!("group '{}'", one_line(g.id()))
+            };
+            if found.len() > 1 {
+                // One key per group: a group of several parts is a
+                // drawing, not one curve.
+                let parts = closed_part_names(g);
+                return Err(CurveError::SeveralParts {
+                    path: format!("{label} ({name})"),
+                    count: parts.len(),
+                    parts: list_names(&parts),
+                });
+            }
             if let Some((start, segs)) = found.pop() {
-                let name = if g.id().is_empty() {
-                    format!("group {}", k + 1)
-                } else {
-                    format!("group '{}'", one_line(g.id()))
-                };
                 let raw = flatten(start, &segs, &format!("{label} ({name})"))?;
                 out.push((name, raw));
             }
@@ -136,8 +159,11 @@ pub(crate) fn parse_all(
         SvgShapes::Shapes => shapes(&tree)?,
         SvgShapes::Groups => groups(&tree)?,
         SvgShapes::Auto => {
-            let g = groups(&tree)?;
-            if g.len() >= 2 { g } else { shapes(&tree)? }
+            if groups_with_shapes(&tree) >= 2 {
+                groups(&tree)?
+            } else {
+                shapes(&tree)?
+            }
         }
     };
     if found.is_empty() {
@@ -153,6 +179,27 @@ pub(crate) fn parse_all(
         });
     }
     Ok(found)
+}
+
+/// How many top-level groups (as [`SvgShapes::Groups`] finds them) hold a
+/// closed shape.
+fn groups_with_shapes(tree: &usvg::Tree) -> usize {
+    let mut level = tree.root();
+    while let [usvg::Node::Group(g)] = level.children() {
+        level = g;
+    }
+    level
+        .children()
+        .iter()
+        .filter(|node| {
+            let usvg::Node::Group(g) = node else {
+                return false;
+            };
+            let mut found = Vec::new();
+            collect_closed(g, None, &mut found, 1);
+            !found.is_empty()
+        })
+        .count()
 }
 
 /// Screens and parses a drawing.
@@ -427,70 +474,190 @@ fn collect_closed(
             usvg::Node::Path(path)
                 if only.map_or(path.id() != BACKGROUND_ID, |id| path.id() == id) =>
             {
-                let ts = path.abs_transform();
-                let map = |p: usvg::tiny_skia_path::Point| {
-                    let (x, y) = (f64::from(p.x), f64::from(p.y));
-                    Point::new(
-                        f64::from(ts.sx) * x + f64::from(ts.kx) * y + f64::from(ts.tx),
-                        f64::from(ts.ky) * x + f64::from(ts.sy) * y + f64::from(ts.ty),
-                    )
-                };
-                let mut start: Option<Point> = None;
-                let mut segs: Vec<Seg> = Vec::new();
-                let mut last = Point::ZERO;
-                for seg in path.data().segments() {
-                    use usvg::tiny_skia_path::PathSegment as S;
-                    match seg {
-                        S::MoveTo(p) => {
-                            // A subpath that returned to its start is
-                            // closed; an open one is skipped.
-                            if let Some(s) = start
-                                && !segs.is_empty()
-                                && last == s
-                            {
-                                found.push((s, std::mem::take(&mut segs)));
-                                if found.len() >= limit {
-                                    return;
-                                }
-                            }
-                            start = Some(map(p));
-                            last = map(p);
-                            segs.clear();
-                        }
-                        S::LineTo(p) => {
-                            last = map(p);
-                            segs.push(Seg::Line(last));
-                        }
-                        S::QuadTo(c, p) => {
-                            last = map(p);
-                            segs.push(Seg::Quad(map(c), last));
-                        }
-                        S::CubicTo(c1, c2, p) => {
-                            last = map(p);
-                            segs.push(Seg::Cubic(map(c1), map(c2), last));
-                        }
-                        S::Close => {
-                            if let Some(s) = start
-                                && !segs.is_empty()
-                            {
-                                found.push((s, std::mem::take(&mut segs)));
-                                if found.len() >= limit {
-                                    return;
-                                }
-                                last = s;
-                            }
+                for sub in subpaths(path) {
+                    if sub.closed {
+                        found.push((sub.start, sub.segs));
+                        if found.len() >= limit {
+                            return;
                         }
                     }
-                }
-                if let Some(s) = start
-                    && !segs.is_empty()
-                    && last == s
-                {
-                    found.push((s, segs));
                 }
             }
             _ => {}
         }
+    }
+}
+
+/// One subpath of a path element, mapped by the element's absolute
+/// transform (y still down).
+#[derive(Clone, Debug)]
+pub(crate) struct Subpath {
+    /// Its first point.
+    pub(crate) start: Point,
+    /// Its segments, from `start`.
+    segs: Vec<Seg>,
+    /// True when it ends with `Z` or returns to its first point.
+    pub(crate) closed: bool,
+}
+
+impl Subpath {
+    /// The flattened points, y flipped up, as [`parse`] reads a curve;
+    /// an open subpath is closed by its implicit closing edge.
+    pub(crate) fn flatten(&self, label: &str) -> Result<RawCurve, CurveError> {
+        flatten(self.start, &self.segs, label)
+    }
+}
+
+/// The subpaths of one path element, in order (open ones included),
+/// mapped by its absolute transform.
+fn subpaths(path: &usvg::Path) -> Vec<Subpath> {
+    let ts = path.abs_transform();
+    let map = |p: usvg::tiny_skia_path::Point| {
+        let (x, y) = (f64::from(p.x), f64::from(p.y));
+        Point::new(
+            f64::from(ts.sx) * x + f64::from(ts.kx) * y + f64::from(ts.tx),
+            f64::from(ts.ky) * x + f64::from(ts.sy) * y + f64::from(ts.ty),
+        )
+    };
+    let mut out = Vec::new();
+    let mut start: Option<Point> = None;
+    let mut segs: Vec<Seg> = Vec::new();
+    let mut last = Point::ZERO;
+    let mut finish = |start: Option<Point>, segs: &mut Vec<Seg>, closed: bool| {
+        if let Some(s) = start
+            && !segs.is_empty()
+        {
+            out.push(Subpath {
+                start: s,
+                segs: std::mem::take(segs),
+                closed,
+            });
+        }
+        segs.clear();
+    };
+    for seg in path.data().segments() {
+        use usvg::tiny_skia_path::PathSegment as S;
+        match seg {
+            S::MoveTo(p) => {
+                // A subpath that returned to its start is closed.
+                finish(start, &mut segs, Some(last) == start);
+                start = Some(map(p));
+                last = map(p);
+            }
+            S::LineTo(p) => {
+                last = map(p);
+                segs.push(Seg::Line(last));
+            }
+            S::QuadTo(c, p) => {
+                last = map(p);
+                segs.push(Seg::Quad(map(c), last));
+            }
+            S::CubicTo(c1, c2, p) => {
+                last = map(p);
+                segs.push(Seg::Cubic(map(c1), map(c2), last));
+            }
+            S::Close => {
+                finish(start, &mut segs, true);
+                if let Some(s) = start {
+                    last = s;
+                }
+            }
+        }
+    }
+    finish(start, &mut segs, Some(last) == start);
+    out
+}
+
+/// A path element of a drawing with its subpaths, in document order.
+#[derive(Clone, Debug)]
+pub(crate) struct Element {
+    /// The element as the SVG parser gives it (style, id).
+    pub(crate) path: usvg::Path,
+    /// The product of the opacities of the groups it is in.
+    pub(crate) group_opacity: f64,
+    /// Its subpaths, open ones included.
+    pub(crate) subpaths: Vec<Subpath>,
+}
+
+/// Every visible path element of a drawing but immerse's own background,
+/// in document (painting) order.
+pub(crate) fn elements(bytes: &[u8], label: &str) -> Result<Vec<Element>, CurveError> {
+    fn walk(group: &usvg::Group, opacity: f64, out: &mut Vec<Element>) {
+        for node in group.children() {
+            match node {
+                usvg::Node::Group(g) => walk(g, opacity * f64::from(g.opacity().get()), out),
+                usvg::Node::Path(path) if path.id() != BACKGROUND_ID && path.is_visible() => {
+                    let subpaths = subpaths(path);
+                    if !subpaths.is_empty() {
+                        out.push(Element {
+                            path: (**path).clone(),
+                            group_opacity: opacity,
+                            subpaths,
+                        });
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+    let tree = load(bytes, label)?;
+    let mut out = Vec::new();
+    walk(tree.root(), 1.0, &mut out);
+    if out.is_empty() && transforms_hide_a_shape(bytes) {
+        return Err(CurveError::SvgOutOfRange {
+            path: label.to_string(),
+        });
+    }
+    Ok(out)
+}
+
+/// What names closed subpath `sub` (counting from 0) of element number
+/// `element` (counting from 0) with id `id` that has `count` closed
+/// subpaths: `path 'ID'` or `path K`, followed by `subpath J` when the
+/// element has several.
+pub(crate) fn part_name(element: usize, id: &str, sub: usize, count: usize) -> String {
+    let path = if id.is_empty() {
+        format!("path {}", element + 1)
+    } else {
+        format!("path '{}'", one_line(id))
+    };
+    if count > 1 {
+        format!("{path} subpath {}", sub + 1)
+    } else {
+        path
+    }
+}
+
+/// The names of the closed parts of a drawing (see [`part_name`]), for the
+/// message that refuses a drawing where one curve is expected.
+fn closed_part_names(group: &usvg::Group) -> Vec<String> {
+    fn walk(group: &usvg::Group, element: &mut usize, out: &mut Vec<String>) {
+        for node in group.children() {
+            match node {
+                usvg::Node::Group(g) => walk(g, element, out),
+                usvg::Node::Path(path) if path.id() != BACKGROUND_ID => {
+                    let closed = subpaths(path).into_iter().filter(|s| s.closed).count();
+                    for k in 0..closed {
+                        out.push(part_name(*element, path.id(), k, closed));
+                    }
+                    *element += 1;
+                }
+                _ => {}
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(group, &mut 0, &mut out);
+    out
+}
+
+/// `names` listed for a message: all of them up to 6, else the first 5
+/// and how many more.
+pub(crate) fn list_names(names: &[String]) -> String {
+    if names.len() <= 6 {
+        names.join(", ")
+    } else {
+        format!("{}, and {} more", names[..5].join(", "), names.len() - 5)
     }
 }
 

@@ -10,6 +10,7 @@ mod certify;
 mod certify_cli;
 mod cli;
 mod curves;
+mod drawings;
 mod immersion;
 mod keys;
 mod morph;

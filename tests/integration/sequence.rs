@@ -611,9 +611,20 @@ fn svg_drawings_give_their_layers_or_shapes_as_keys() {
     // Only one top-level group: auto falls back to shapes.
     let auto = Curve::all_from_svg_bytes(svg, "s.svg", "s", SvgShapes::Auto).unwrap();
     assert_eq!(auto.len(), 4);
-    let groups = Curve::all_from_svg_bytes(svg, "s.svg", "s", SvgShapes::Groups).unwrap();
-    assert_eq!(groups.len(), 1);
-    assert_eq!(groups[0].name, "s group 2");
+    // A group of two closed shapes is a drawing, not one key: refused,
+    // naming its parts, never read as its first part.
+    let e = Curve::all_from_svg_bytes(svg, "s.svg", "s", SvgShapes::Groups).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "s.svg (group 2): 2 closed shapes (path 1, path 2), not one curve; read it as a drawing (`immerse check`, `immerse morph`) or keep one shape"
+    );
+    let one = br#"<svg xmlns="http://www.w3.org/2000/svg">
+        <g id="a"><rect x="0" y="20" width="5" height="5"/></g>
+        <g id="b"><rect x="10" y="20" width="5" height="5"/><polyline points="0 40 5 40 5 45"/></g>
+    </svg>"#;
+    let groups = Curve::all_from_svg_bytes(one, "s.svg", "s", SvgShapes::Groups).unwrap();
+    assert_eq!(groups.len(), 2);
+    assert_eq!(groups[1].name, "s group 'b'");
     let e = Curve::all_from_svg_bytes(
         br#"<svg xmlns="http://www.w3.org/2000/svg"><path d="M 0 0 L 1 0 L 2 0 Z"/></svg>"#,
         "flat.svg",

@@ -160,6 +160,17 @@ pub(crate) struct CertifyArgs {
     pub(crate) force: bool,
 }
 
+/// How the shapes of two drawings are paired.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum MatchArg {
+    /// The same id; shapes without a partner appear or vanish.
+    Id,
+    /// The k-th shape with the k-th.
+    Order,
+    /// The least total cost of position, size and outline.
+    Auto,
+}
+
 /// Which shapes of one SVG drawing are the keys.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum SvgKeysArg {
@@ -167,7 +178,7 @@ pub(crate) enum SvgKeysArg {
     Auto,
     /// Each closed shape, in document order.
     Shapes,
-    /// The first closed shape of each top-level group or layer.
+    /// The closed shape of each top-level group or layer (a group of several closed shapes is refused, naming them).
     Groups,
 }
 
@@ -449,14 +460,17 @@ pub(crate) struct DemoArgs {
 /// Arguments of `immerse check`.
 #[derive(Debug, Args)]
 pub(crate) struct CheckArgs {
-    /// The curve file (.json, .txt, .csv, .xy or .svg).
+    /// The curve file (.json, .txt, .csv, .xy or .svg); a drawing of
+    /// several shapes is answered shape by shape (yes when every shape is
+    /// self-overlapping).
     pub(crate) curve: PathBuf,
     /// Write one JSON object instead of text: bare --json prints it on
     /// stdout, --json=FILE writes FILE ("-" or /dev/stdout: stdout).
     ///
     /// Fields: points (count after cleaning), turning_number (of the curve
     /// as given), simple, reversed, self_overlapping, reason (null when
-    /// self-overlapping).
+    /// self-overlapping). For a drawing: self_overlapping (every shape),
+    /// notices, and shapes, each with id, label and those fields.
     #[arg(long, value_name = "FILE", num_args = 0..=1, require_equals = true, default_missing_value = "-")]
     pub(crate) json: Option<PathBuf>,
     /// Replace an existing --json file.
@@ -588,6 +602,10 @@ pub(crate) struct MorphArgs {
     /// Number of frames, including the two ends.
     #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(2..=100_000))]
     pub(crate) frames: u32,
+    /// For drawings (files of several shapes): which shape of the source
+    /// becomes which of the target (docs/design.md §2b).
+    #[arg(long = "match", value_enum, default_value_t = MatchArg::Auto)]
+    pub(crate) match_mode: MatchArg,
     /// How each triangle's third vertex travels.
     #[arg(long, value_enum, default_value_t = PathArg::Rigid)]
     pub(crate) path: PathArg,

@@ -5,6 +5,7 @@ mod animate;
 mod certify;
 mod check;
 mod demo;
+mod drawing_morph;
 pub(crate) mod keyed;
 mod mesh_morph;
 pub(crate) mod morph;

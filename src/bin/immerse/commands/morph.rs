@@ -78,8 +78,18 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         ("--metrics", args.metrics),
     ])?;
     let mut clock = Timings::new(args.timings);
-    let src = Curve::from_path(&args.source)?;
-    let dst = Curve::from_path(&args.target)?;
+    let several = |r: &Result<Curve, immerse::curve::CurveError>| {
+        matches!(r, Err(immerse::curve::CurveError::SeveralParts { .. }))
+    };
+    let (src, dst) = (
+        Curve::from_path(&args.source),
+        Curve::from_path(&args.target),
+    );
+    if several(&src) || several(&dst) {
+        // Drawings: every shape morphs (docs/design.md §2b).
+        return super::drawing_morph::run(args, images, &options(args));
+    }
+    let (src, dst) = (src?, dst?);
     if !args.quiet {
         for (c, path) in [(&src, &args.source), (&dst, &args.target)] {
             // SVG shapes (rect, circle, ellipse) are drawn clockwise on
@@ -101,19 +111,7 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         );
     }
     let times = render::frame_times(args.frames as usize, &easing);
-    let options = CurveMorphOptions::DEFAULT
-        .with_quality(Quality::from(args.quality))
-        .with_counts(match args.counts {
-            CountsArg::Insert => Counts::Insert,
-            CountsArg::Resample => Counts::Resample,
-        })
-        .with_correspondence(args.correspondence.into())
-        .with_intermediate(match args.intermediate {
-            IntermediateArg::Target => Intermediate::Target,
-            IntermediateArg::Disk => Intermediate::Disk,
-        })
-        .with_morph(MorphOptions::DEFAULT.with_path(args.path.into()))
-        .with_key_tolerance(args.key_tolerance);
+    let options = options(args);
     let busy = super::spinner(
         &format!("triangulating, matching and morphing {n} vertices"),
         args.quiet || n < 300,
@@ -280,7 +278,7 @@ impl Timings {
 }
 
 /// The image style of `immerse morph`.
-fn style(args: &MorphArgs) -> render::Style {
+pub(crate) fn style(args: &MorphArgs) -> render::Style {
     render::Style::DEFAULT
         .with_size(args.size.0, args.size.1)
         .with_wireframe(args.wireframe)
@@ -288,7 +286,7 @@ fn style(args: &MorphArgs) -> render::Style {
 }
 
 /// How `immerse morph`'s animations play.
-fn looping(args: &MorphArgs) -> render::Loop {
+pub(crate) fn looping(args: &MorphArgs) -> render::Loop {
     if args.ping_pong {
         render::Loop::PingPong
     } else if args.once {
@@ -396,4 +394,21 @@ pub(crate) fn write_frames(
     }
     bar.finish_and_clear();
     Ok(())
+}
+
+/// The library options `immerse morph`'s arguments ask for.
+pub(crate) fn options(args: &MorphArgs) -> CurveMorphOptions {
+    CurveMorphOptions::DEFAULT
+        .with_quality(Quality::from(args.quality))
+        .with_counts(match args.counts {
+            CountsArg::Insert => Counts::Insert,
+            CountsArg::Resample => Counts::Resample,
+        })
+        .with_correspondence(args.correspondence.into())
+        .with_intermediate(match args.intermediate {
+            IntermediateArg::Target => Intermediate::Target,
+            IntermediateArg::Disk => Intermediate::Disk,
+        })
+        .with_morph(MorphOptions::DEFAULT.with_path(args.path.into()))
+        .with_key_tolerance(args.key_tolerance)
 }

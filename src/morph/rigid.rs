@@ -25,7 +25,6 @@
 
 use crate::geom::Point;
 use crate::tree::Rooted;
-use rustc_hash::FxHashMap;
 use std::f64::consts::{PI, TAU};
 
 /// Per triangle: its corners, its area-weighted gradient operator and its
@@ -112,8 +111,11 @@ impl RigidGuide {
                     g0.y * inv[0][1] + g1.y * inv[1][1],
                 ],
             ];
-            let theta = (a[1][0] - a[0][1]).atan2(a[0][0] + a[1][1]);
-            let (co, si) = (theta.cos(), theta.sin());
+            // The polar rotation R(θ): (cos θ, sin θ) ∝ (a₀₀ + a₁₁, a₁₀ − a₀₁).
+            let (rc, rs) = (a[0][0] + a[1][1], a[1][0] - a[0][1]);
+            let theta = rs.atan2(rc);
+            let h = rc.hypot(rs);
+            let (co, si) = if h > 0.0 { (rc / h, rs / h) } else { (1.0, 0.0) };
             // S = R(−θ) A, symmetrised (it is symmetric up to rounding).
             let s11 = co * a[0][0] + si * a[1][0];
             let s12 = 0.5 * ((co * a[0][1] + si * a[1][1]) + (-si * a[0][0] + co * a[1][0]));
@@ -126,18 +128,20 @@ impl RigidGuide {
             if !(l2 > 0.0 && l1.is_finite()) {
                 return None;
             }
-            let alpha = 0.5 * (2.0 * s12).atan2(s11 - s22);
+            // The first eigenvector at angle α, 2α = atan2(2 s₁₂, s₁₁ − s₂₂):
+            // cos²α, sin²α and cos α sin α from the double angle.
+            let (c2, s2) = if radius > 0.0 {
+                (0.5 * (s11 - s22) / radius, s12 / radius)
+            } else {
+                (1.0, 0.0)
+            };
             raw.push(Element {
                 corners: c,
                 wk,
                 area: w,
                 theta,
                 stretch: (
-                    [
-                        alpha.cos().powi(2),
-                        alpha.sin().powi(2),
-                        alpha.cos() * alpha.sin(),
-                    ],
+                    [0.5 * (1.0 + c2), 0.5 * (1.0 - c2), 0.5 * s2],
                     [l1.ln(), l2.ln()],
                 ),
             });
@@ -167,7 +171,7 @@ impl RigidGuide {
         if turns != 0.0 {
             raw.iter_mut().for_each(|e| e.theta -= turns * TAU);
         }
-        let (steps, pinned) = factor(n, &raw)?;
+        let (steps, pinned) = factor(n, &raw, rooted)?;
         Some(RigidGuide {
             elements: raw,
             steps,
@@ -213,36 +217,79 @@ impl RigidGuide {
     }
 }
 
+/// The three corner pairs of a triangle, in the order of its edge slots.
+const PAIRS: [[usize; 2]; 3] = [[0, 1], [1, 2], [2, 0]];
+
+/// The slot (0–2) of the edge between corners holding `a` and `b` in
+/// `corners`.
+fn slot(corners: &[usize; 3], a: usize, b: usize) -> usize {
+    PAIRS
+        .iter()
+        .position(|&[i, j]| {
+            (corners[i] == a && corners[j] == b) || (corners[i] == b && corners[j] == a)
+        })
+        .expect("the two vertices are corners of the triangle")
+}
+
+/// An index for every edge of the triangulation, per triangle and slot:
+/// a triangle's base (the edge it shares with its parent in `rooted`)
+/// takes its parent's index, every other edge a new one.
+fn edge_ids(elements: &[Element], rooted: &Rooted) -> (Vec<[usize; 3]>, usize) {
+    let mut ids = vec![[usize::MAX; 3]; elements.len()];
+    let mut next = 0;
+    for &t in &rooted.order {
+        let c = &elements[t].corners;
+        let shared = rooted.parent[t].map(|p| {
+            let [x, y] = rooted.base[t].map(|v| v as usize);
+            (slot(c, x, y), ids[p][slot(&elements[p].corners, x, y)])
+        });
+        for k in 0..3 {
+            ids[t][k] = match shared {
+                Some((s, id)) if s == k => id,
+                _ => {
+                    next += 1;
+                    next - 1
+                }
+            };
+        }
+    }
+    (ids, next)
+}
+
 /// Assembles the matrix Σ w K Kᵀ and factors it by eliminating ears in
-/// turn (no fill-in), holding one vertex of the last triangle at zero.
-/// Returns the steps and the held vertex; `None` when a pivot is not
-/// positive in floating point.
-fn factor(n: usize, elements: &[Element]) -> Option<(Vec<Step>, usize)> {
+/// turn (no fill-in: every entry an elimination reads or writes lies on
+/// an edge of the ear's triangle), holding one vertex of the last
+/// triangle at zero. Returns the steps and the held vertex; `None` when a
+/// pivot is not positive in floating point.
+fn factor(n: usize, elements: &[Element], rooted: &Rooted) -> Option<(Vec<Step>, usize)> {
     let mut diag = vec![0.0; n];
-    let key = |a: usize, b: usize| -> u64 {
-        let (lo, hi) = if a < b { (a, b) } else { (b, a) };
-        ((lo as u64) << 32) | hi as u64
-    };
-    let mut off: FxHashMap<u64, f64> = FxHashMap::default();
-    off.reserve(3 * elements.len());
-    // Triangles of each vertex, to find ears.
+    let (ids, edges) = edge_ids(elements, rooted);
+    let mut off = vec![0.0; edges];
+    // Triangles of each vertex (flat lists), to find ears.
     let mut count = vec![0usize; n];
-    let mut of_vertex: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for e in elements {
+        for &v in &e.corners {
+            count[v] += 1;
+        }
+    }
+    let mut start = vec![0usize; n + 1];
+    for v in 0..n {
+        start[v + 1] = start[v] + count[v];
+    }
+    let mut fill = start.clone();
+    let mut of_vertex = vec![0usize; start[n]];
     for (t, e) in elements.iter().enumerate() {
         for i in 0..3 {
-            let (vi, gi) = (e.corners[i], e.wk[i]);
-            count[vi] += 1;
-            of_vertex[vi].push(t);
-            for j in 0..3 {
-                let (vj, gj) = (e.corners[j], e.wk[j]);
-                // (w K Kᵀ)_ij = (wK)_i · K_j = (wK)_i · (wK)_j / w; w = area.
-                let value = (gi[0] * gj[0] + gi[1] * gj[1]) / e.area;
-                if i == j {
-                    diag[vi] += value;
-                } else if i < j {
-                    *off.entry(key(vi, vj)).or_insert(0.0) += value;
-                }
-            }
+            let vi = e.corners[i];
+            of_vertex[fill[vi]] = t;
+            fill[vi] += 1;
+            // (w K Kᵀ)_ii = (wK)_i · (wK)_i / w; w = area.
+            let gi = e.wk[i];
+            diag[vi] += (gi[0] * gi[0] + gi[1] * gi[1]) / e.area;
+        }
+        for (k, &[i, j]) in PAIRS.iter().enumerate() {
+            let (gi, gj) = (e.wk[i], e.wk[j]);
+            off[ids[t][k]] += (gi[0] * gj[0] + gi[1] * gj[1]) / e.area;
         }
     }
     // The vertex held at zero: a corner of some triangle; it is never
@@ -256,17 +303,17 @@ fn factor(n: usize, elements: &[Element]) -> Option<(Vec<Step>, usize)> {
         if eliminated[v] || count[v] != 1 {
             continue;
         }
-        let Some(&t) = of_vertex[v].iter().find(|&&t| alive[t]) else {
+        let Some(&t) = of_vertex[start[v]..start[v + 1]]
+            .iter()
+            .find(|&&t| alive[t])
+        else {
             continue;
         };
         alive[t] = false;
         eliminated[v] = true;
-        let others: Vec<usize> = elements[t]
-            .corners
-            .iter()
-            .copied()
-            .filter(|&u| u != v)
-            .collect();
+        let corners = &elements[t].corners;
+        let edge = |a: usize, b: usize| ids[t][slot(corners, a, b)];
+        let others: Vec<usize> = corners.iter().copied().filter(|&u| u != v).collect();
         let pivot = diag[v];
         if !(pivot > 0.0 && pivot.is_finite()) {
             return None;
@@ -278,7 +325,7 @@ fn factor(n: usize, elements: &[Element]) -> Option<(Vec<Step>, usize)> {
             if u == pinned {
                 continue;
             }
-            let l = off.get(&key(u, v)).copied().unwrap_or(0.0);
+            let l = off[edge(u, v)];
             next[k] = (u, l / pivot);
             k += 1;
             diag[u] -= l * l / pivot;
@@ -286,8 +333,8 @@ fn factor(n: usize, elements: &[Element]) -> Option<(Vec<Step>, usize)> {
         if k == 2 {
             let (u, mu) = next[0];
             let (w, _) = next[1];
-            let lw = off.get(&key(w, v)).copied().unwrap_or(0.0);
-            *off.entry(key(u, w)).or_insert(0.0) -= mu * lw;
+            let lw = off[edge(w, v)];
+            off[edge(u, w)] -= mu * lw;
         }
         steps.push(Step {
             v,

@@ -29,6 +29,7 @@ use crate::correspond::shift_triangles;
 use crate::frames::{Fallback, Frame, Morph};
 use crate::geom::Point;
 use crate::immersion::check_triangles;
+use std::cell::OnceCell;
 
 /// One key of a morph's animation: the shape at fraction `t` of the pace
 /// and the triangulation of the segment that follows it (for the last
@@ -888,51 +889,53 @@ fn merge_keys(leg: &mut Leg, tol: f64) {
     let tris = leg.plan.triangles().to_vec();
     let view: &Leg = leg;
     let (keys, samples) = (&view.keys, &view.samples);
-    let joins = |i: usize, j: usize| -> bool {
+    // The path halfway between keys k − 1 and k, and the areas there and
+    // at each key: computed once, whatever (i, j) asks for them.
+    let halfway: Vec<OnceCell<(Vec<Point>, f64)>> = (0..count).map(|_| OnceCell::new()).collect();
+    let key_area: Vec<OnceCell<f64>> = (0..count).map(|_| OnceCell::new()).collect();
+    let halfway_at = |k: usize| {
+        halfway[k].get_or_init(|| {
+            let mid = 0.5 * (samples[k - 1] + samples[k]);
+            let on = view.plan.positions(mid, view.path);
+            let area = area_and_centroid(&on, &tris).0;
+            (on, area)
+        })
+    };
+    let area_at = |k: usize| *key_area[k].get_or_init(|| area_and_centroid(&keys[k], &tris).0);
+    // Whether the chord from key i to key j passes within the tolerance of
+    // `on` (the path at `sk`, of area `on_area`), in position and area.
+    let near = |i: usize, j: usize, sk: f64, on: &[Point], on_area: f64| -> bool {
         let (a, b) = (&keys[i], &keys[j]);
+        let w = (sk - samples[i]) / (samples[j] - samples[i]);
+        let chord: Vec<Point> = a.iter().zip(b).map(|(p, q)| p.lerp(*q, w)).collect();
+        chord.iter().zip(on).all(|(c, p)| (*c - *p).length() <= tol) && {
+            let on_chord = area_and_centroid(&chord, &tris).0;
+            (on_chord - on_area).abs() <= KEY_AREA_TOLERANCE * on_area.abs()
+        }
+    };
+    let joins = |i: usize, j: usize| -> bool {
         let span = samples[j] - samples[i];
         if span.is_nan() || span <= 0.0 {
             return false;
         }
         // Every skipped key, and the path halfway between each two keys.
         let close = (i + 1..j).all(|k| {
-            let mid = 0.5 * (samples[k - 1] + samples[k]);
-            let halfway = view.plan.positions(mid, view.path);
-            [(samples[k], keys[k].as_slice()), (mid, halfway.as_slice())]
-                .into_iter()
-                .all(|(sk, on)| {
-                    let w = (sk - samples[i]) / span;
-                    let chord: Vec<Point> = a.iter().zip(b).map(|(p, q)| p.lerp(*q, w)).collect();
-                    let near = chord.iter().zip(on).all(|(c, p)| (*c - *p).length() <= tol);
-                    near && {
-                        let (on_path, on_chord) = (
-                            area_and_centroid(on, &tris).0,
-                            area_and_centroid(&chord, &tris).0,
-                        );
-                        (on_chord - on_path).abs() <= KEY_AREA_TOLERANCE * on_path.abs()
-                    }
-                })
+            let (on, on_area) = halfway_at(k);
+            near(i, j, samples[k], &keys[k], area_at(k))
+                && near(i, j, 0.5 * (samples[k - 1] + samples[k]), on, *on_area)
         }) && {
             // And halfway through the last key interval.
-            let mid = 0.5 * (samples[j - 1] + samples[j]);
-            let on = view.plan.positions(mid, view.path);
-            let w = (mid - samples[i]) / span;
-            let chord: Vec<Point> = a.iter().zip(b).map(|(p, q)| p.lerp(*q, w)).collect();
-            chord
-                .iter()
-                .zip(&on)
-                .all(|(c, p)| (*c - *p).length() <= tol)
-                && {
-                    let (on_path, on_chord) = (
-                        area_and_centroid(&on, &tris).0,
-                        area_and_centroid(&chord, &tris).0,
-                    );
-                    (on_chord - on_path).abs() <= KEY_AREA_TOLERANCE * on_path.abs()
-                }
+            let (on, on_area) = halfway_at(j);
+            near(i, j, 0.5 * (samples[j - 1] + samples[j]), on, *on_area)
         };
         close
-            && crate::certify::certify_segment(a, b, &tris, crate::certify::Player::Exact)
-                .is_ok_and(|r| r.is_certified())
+            && crate::certify::certify_segment(
+                &keys[i],
+                &keys[j],
+                &tris,
+                crate::certify::Player::Exact,
+            )
+            .is_ok_and(|r| r.is_certified())
     };
     let mut kept = vec![0usize];
     let mut i = 0;

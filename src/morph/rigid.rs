@@ -243,9 +243,9 @@ fn edge_ids(elements: &[Element], rooted: &Rooted) -> (Vec<[usize; 3]>, usize) {
             let [x, y] = rooted.base[t].map(|v| v as usize);
             (slot(c, x, y), ids[p][slot(&elements[p].corners, x, y)])
         });
-        for k in 0..3 {
-            ids[t][k] = match shared {
-                Some((s, id)) if s == k => id,
+        for (k, id) in ids[t].iter_mut().enumerate() {
+            *id = match shared {
+                Some((s, parent_id)) if s == k => parent_id,
                 _ => {
                     next += 1;
                     next - 1

@@ -115,7 +115,11 @@ impl RigidGuide {
             let (rc, rs) = (a[0][0] + a[1][1], a[1][0] - a[0][1]);
             let theta = rs.atan2(rc);
             let h = rc.hypot(rs);
-            let (co, si) = if h > 0.0 { (rc / h, rs / h) } else { (1.0, 0.0) };
+            let (co, si) = if h > 0.0 {
+                (rc / h, rs / h)
+            } else {
+                (1.0, 0.0)
+            };
             // S = R(−θ) A, symmetrised (it is symmetric up to rounding).
             let s11 = co * a[0][0] + si * a[1][0];
             let s12 = 0.5 * ((co * a[0][1] + si * a[1][1]) + (-si * a[0][0] + co * a[1][0]));

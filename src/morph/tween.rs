@@ -130,9 +130,9 @@ impl Tween {
         Ok(tween)
     }
 
-    /// The least total absolute turning over the keys of the side used,
-    /// divided by the smaller of its two ends' (the unwind of §7c on the
-    /// keys).
+    /// The least total absolute turning over the keys of the side used
+    /// and the midpoints of the segments between them, divided by the
+    /// smaller of its two ends' (the unwind of §7c on the keyed motion).
     fn key_unwind(&self) -> f64 {
         let turning = crate::frames::total_absolute_turning;
         let legs = &self.staged.legs;
@@ -143,10 +143,24 @@ impl Tween {
             return 1.0;
         };
         let ends = turning(first).min(turning(last));
+        // At the keys and halfway along each segment between them, where a
+        // player draws the chord (a corner that straightens between two
+        // keys is least turned there).
         let least = legs
             .iter()
-            .flat_map(|l| &l.keys)
-            .map(|k| turning(k))
+            .flat_map(|l| {
+                l.keys
+                    .iter()
+                    .map(|k| turning(k))
+                    .chain(l.keys.windows(2).map(|w| {
+                        let mid: Vec<Point> = w[0]
+                            .iter()
+                            .zip(&w[1])
+                            .map(|(p, q)| p.lerp(*q, 0.5))
+                            .collect();
+                        turning(&mid)
+                    }))
+            })
             .fold(f64::INFINITY, f64::min);
         if ends > 0.0 { least / ends } else { 1.0 }
     }

@@ -364,17 +364,16 @@ fn motion_meets_its_goal_on_the_motion_pairs() {
     assert!(g >= 0.5, "median angle ratio {g:.2}");
 }
 
-/// The same gates on `curves/reference-pairs.list`. Three pairs keep less
-/// than 0.9 of their turning, and are named with the floor they keep:
-/// each has corners that turn one way on one curve and the other way on
-/// the other (a letter E's inner corners against a star's points, a comb's
-/// teeth against an annulus sector, coils of opposite sense), so some
-/// frame must pass them through straight (docs/motion.md).
+/// The same gates on `curves/reference-pairs.list`. Two pairs keep less
+/// than 0.9 of their turning, and are named with the floor they keep: a
+/// letter E's inner corners against a star's points, where every path
+/// straightens corners on the way (the best keeps 0.83), and an annulus
+/// sector against a curl that coils past itself, where only a path
+/// detouring 5× keeps 0.9 (docs/motion.md).
 #[test]
 fn motion_meets_its_goal_on_the_reference_pairs() {
-    let known: [(&str, &str, f64); 3] = [
+    let known: [(&str, &str, f64); 2] = [
         ("letter-E.json", "star-5-points.json", 0.78),
-        ("comb-8-teeth.json", "annulus-sector-300deg-n40.json", 0.88),
         (
             "annulus-sector-300deg-n40.json",
             "curl-strip-n10.json",

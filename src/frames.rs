@@ -2,94 +2,12 @@
 //! Table 1).
 
 use crate::geom::Point;
-use crate::morph::ThirdVertexPath;
+pub use crate::geom::polygon::total_absolute_turning;
+pub(crate) use crate::morph::output::ser_points;
+pub use crate::morph::{Fallback, Frame, Morph};
 
-/// One in-between: vertex positions and the triangulation they carry.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct Frame {
-    /// The morph parameter of this frame, in [0, 1].
-    pub t: f64,
-    /// Vertex positions (y up), in the curve's cyclic order.
-    #[serde(serialize_with = "ser_points")]
-    pub points: Vec<Point>,
-    /// Triangles, counter-clockwise, corners in cyclic order.
-    pub triangles: Vec<[u32; 3]>,
-}
-
-pub(crate) fn ser_points<S: serde::Serializer>(points: &[Point], s: S) -> Result<S::Ok, S::Error> {
-    use serde::ser::SerializeSeq;
-    let mut seq = s.serialize_seq(Some(points.len()))?;
-    for p in points {
-        seq.serialize_element(&[p.x, p.y])?;
-    }
-    seq.end()
-}
-
-impl Frame {
-    /// Checks with exact predicates that the frame is an immersion: every
-    /// triangle counter-clockwise and no vertex fan wraps.
-    ///
-    /// # Errors
-    ///
-    /// The defect found by the immersion checker.
-    pub fn check(&self) -> Result<(), crate::immersion::ImmersionDefect> {
-        crate::immersion::check(&self.points, &self.triangles)
-    }
-
-    /// True when [`Frame::check`] passes.
-    pub fn is_immersion(&self) -> bool {
-        self.check().is_ok()
-    }
-
-    /// The smallest triangle angle of the frame, in radians.
-    pub fn min_angle(&self) -> f64 {
-        crate::geom::polygon::min_triangle_angle(&self.points, &self.triangles)
-    }
-
-    /// Total area of the triangles (overlaps counted with multiplicity).
-    pub fn total_area(&self) -> f64 {
-        crate::morph::area_and_centroid(&self.points, &self.triangles).0
-    }
-}
-
-/// A morph: its frames, the paths that produced them and everything that
-/// did not go as asked.
-///
-/// In JSON: `{"path": ..., "fallback": ..., "fallbacks": [...], "motion":
-/// {"detour": ..., "unwind": ...}, "frames": [...]}`, where `motion` holds
-/// the [`detour`] and [`unwind`] of the frames (`null` where they are not
-/// defined, e.g. when the vertex count changes between frames).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Morph {
-    /// The third-vertex paths the frames were made with, in order of first
-    /// use (in JSON: `path`, one name or names joined by `+`).
-    pub paths: Vec<ThirdVertexPath>,
-    /// True when anything other than what was asked was used (another
-    /// path, the disk, another triangulation, other counts); `fallbacks`
-    /// says what and why.
-    pub fallback: bool,
-    /// What was tried instead of what was asked, and why, in order.
-    pub fallbacks: Vec<Fallback>,
-    /// The frames, in order of t.
-    pub frames: Vec<Frame>,
-}
-
-impl Morph {
-    /// The paths used, as in the JSON: one name, or names joined by `+`.
-    pub fn path_name(&self) -> String {
-        path_names(&self.paths)
-    }
-}
-
-/// Path names joined by `+`.
-pub(crate) fn path_names(paths: &[ThirdVertexPath]) -> String {
-    paths
-        .iter()
-        .map(|p| p.as_str())
-        .collect::<Vec<_>>()
-        .join("+")
-}
-
+/// A morph in JSON, with the motion measures of its frames (defined here,
+/// beside the measures, so that the morph's types need nothing above them).
 impl serde::Serialize for Morph {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         use serde::ser::SerializeStruct;
@@ -112,31 +30,6 @@ impl serde::Serialize for Morph {
         )?;
         m.serialize_field("frames", &self.frames)?;
         m.end()
-    }
-}
-
-/// One recovery: what was done instead of what was asked, and why.
-#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
-pub struct Fallback {
-    /// What was done, e.g. "used the hybrid path for the last leg".
-    pub what: String,
-    /// Why, e.g. the defect of the frame that failed the exact check.
-    pub why: String,
-}
-
-impl Fallback {
-    /// A fallback from its two parts.
-    pub fn new(what: &str, why: &str) -> Fallback {
-        Fallback {
-            what: what.to_string(),
-            why: why.to_string(),
-        }
-    }
-}
-
-impl std::fmt::Display for Fallback {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}: {}", self.what, self.why)
     }
 }
 
@@ -312,21 +205,6 @@ pub fn detour(frames: &[Frame]) -> f64 {
         return if travelled <= 0.0 { 1.0 } else { f64::INFINITY };
     }
     travelled / straight
-}
-
-/// Total absolute turning of a closed polygon: the sum over vertices of
-/// the absolute exterior (turning) angle, radians. Measurement only.
-pub fn total_absolute_turning(points: &[Point]) -> f64 {
-    let n = points.len();
-    (0..n)
-        .map(|i| {
-            let a = points[(i + n - 1) % n];
-            let b = points[i];
-            let c = points[(i + 1) % n];
-            let (u, v) = (b - a, c - b);
-            u.perp_dot(v).atan2(u.dot(v)).abs()
-        })
-        .sum()
 }
 
 /// The unwind of a frame sequence: the smallest total absolute turning of

@@ -1065,8 +1065,8 @@ pub fn lay_out_rooted(rooted: &Rooted, triangles: &[[u32; 3]], angles: &[[f64; 3
 
 #[cfg(test)]
 pub(crate) mod tests {
+    use crate::morph::Frame;
     use super::*;
-    use crate::frames::Frame;
     use std::f64::consts::PI;
 
     #[test]

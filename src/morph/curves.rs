@@ -3,9 +3,9 @@
 
 use super::flips::crossings_per_shift;
 use super::staged::{Limit, SideInput};
+use super::{Fallback, Morph};
 use super::{MorphError, MorphOptions, Staged, ThirdVertexPath};
 use crate::correspond::{insert_vertices, resample_arc_length, shift_triangles};
-use crate::frames::{Fallback, Morph};
 use crate::geom::Point;
 use crate::geom::polygon::min_triangle_angle as min_angle;
 use crate::immersion::{Immersion, NotSelfOverlapping};

@@ -9,8 +9,11 @@
 //! number of crossings at that moment, and an inserted diagonal is never
 //! flipped again (target diagonals do not cross each other).
 
-use crate::flip::key;
 pub use crate::flip::{Flip, FlipTriangulation, crosses};
+use crate::flip::{canonical, key};
+use crate::geom::Point;
+use crate::geom::polygon::min_angle_sine;
+use crate::immersion::is_valid_triangle;
 
 /// Counts, for any chord, how many chords of a fixed set it crosses, in
 /// O(log² m) per query (a merge-sort tree over the set's first endpoints).
@@ -169,6 +172,34 @@ pub fn crossings_per_shift(n: usize, t1: &[[u32; 3]], t2: &[[u32; 3]]) -> Vec<us
                 a
             },
         )
+}
+
+/// The flip gate of docs/design.md §7: the flip of the quad `[a, b, c, d]`
+/// (diagonal a–c to b–d) may be applied in shape `p` when both new
+/// triangles are valid and their minimum angle is at least min(the old
+/// pair's, `floor`); returns the sine of that minimum angle (it orders
+/// flips as the angle does). With `floor` = 0 only validity is required.
+pub(crate) fn gate(p: &[Point], quad: [u32; 4], floor: f64) -> Option<f64> {
+    let [a, b, c, d] = quad;
+    let q = |v: u32| p[v as usize];
+    // Cheap exact rejection first: the quad must be strictly convex at
+    // b and d for both new triangles to be counter-clockwise.
+    if !(crate::geom::orient(q(a), q(b), q(d)).is_ccw()
+        && crate::geom::orient(q(b), q(c), q(d)).is_ccw())
+    {
+        return None;
+    }
+    let new = [canonical([a, b, d]), canonical([b, c, d])];
+    if !new
+        .iter()
+        .all(|t| is_valid_triangle(p, t[0] as usize, t[1] as usize, t[2] as usize))
+    {
+        return None;
+    }
+    let sine = |t: [u32; 3]| min_angle_sine(q(t[0]), q(t[1]), q(t[2]));
+    let m = sine([a, b, d]).min(sine([b, c, d]));
+    let old = sine([a, b, c]).min(sine([c, d, a]));
+    (m >= old.min(floor.min(std::f64::consts::FRAC_PI_2).sin())).then_some(m)
 }
 
 #[cfg(test)]

@@ -5,6 +5,7 @@ mod compatible;
 mod curves;
 pub mod flips;
 mod layout;
+pub(crate) mod output;
 mod paths;
 mod rigid;
 mod staged;
@@ -20,12 +21,12 @@ pub use curves::{
     MAX_KEY_TOLERANCE, MorphReport, Side, choose_shift, equal_counts, morph_curves,
     shape_cost_per_shift, triangulate_side,
 };
+pub use output::{Fallback, Frame, Morph};
 pub use paths::ThirdVertexPath;
 pub use staged::{LEG_STEP, SCHEDULE_STEP, Staged, disk_for};
 pub use target::{TARGET_FAN_MARGIN, TARGET_MIN_ANGLE};
 pub use tween::{Keyframe, Tween, timed_keyframes};
 
-use crate::frames::{Fallback, Frame, Morph};
 use crate::tree::RootChoice;
 
 /// Options of a morph.

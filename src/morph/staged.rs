@@ -28,14 +28,14 @@
 //! that cannot be laid out or that no path reaches hands over to the disk;
 //! every such step is recorded as a [`Fallback`].
 
-use super::flips::{Flip, FlipTriangulation, flip_sequence};
+use super::Fallback;
+use super::flips::{Flip, FlipTriangulation, flip_sequence, gate};
 use super::target::{Candidates, TargetAngles, target_shape};
 use super::{Compatible, CompatibleError, MorphError, ThirdVertexPath, area_and_centroid};
 use crate::flip::canonical;
-use crate::frames::Fallback;
 use crate::geom::Point;
-use crate::geom::polygon::{min_angle_sine, min_triangle_angle as min_angle, signed_area};
-use crate::immersion::{check, check_triangles, is_valid_triangle};
+use crate::geom::polygon::{min_triangle_angle as min_angle, signed_area};
+use crate::immersion::{check, check_triangles};
 use crate::tree::{DualTree, RootChoice, disk_positions};
 
 /// Step of the walk along one leg, in the leg's own parameter.
@@ -362,34 +362,6 @@ pub fn disk_for(points: &[Point], area: f64, centroid: Point) -> Vec<Point> {
     unit.into_iter()
         .map(|p| centroid + (p - c_unit) * scale)
         .collect()
-}
-
-/// The flip gate of docs/design.md §7: the flip of the quad `[a, b, c, d]`
-/// (diagonal a–c to b–d) may be applied in shape `p` when both new
-/// triangles are valid and their minimum angle is at least min(the old
-/// pair's, `floor`); returns the sine of that minimum angle (it orders
-/// flips as the angle does). With `floor` = 0 only validity is required.
-pub(crate) fn gate(p: &[Point], quad: [u32; 4], floor: f64) -> Option<f64> {
-    let [a, b, c, d] = quad;
-    let q = |v: u32| p[v as usize];
-    // Cheap exact rejection first: the quad must be strictly convex at
-    // b and d for both new triangles to be counter-clockwise.
-    if !(crate::geom::orient(q(a), q(b), q(d)).is_ccw()
-        && crate::geom::orient(q(b), q(c), q(d)).is_ccw())
-    {
-        return None;
-    }
-    let new = [canonical([a, b, d]), canonical([b, c, d])];
-    if !new
-        .iter()
-        .all(|t| is_valid_triangle(p, t[0] as usize, t[1] as usize, t[2] as usize))
-    {
-        return None;
-    }
-    let sine = |t: [u32; 3]| min_angle_sine(q(t[0]), q(t[1]), q(t[2]));
-    let m = sine([a, b, d]).min(sine([b, c, d]));
-    let old = sine([a, b, c]).min(sine([c, d, a]));
-    (m >= old.min(floor.min(std::f64::consts::FRAC_PI_2).sin())).then_some(m)
 }
 
 /// Which flips come next.
@@ -976,7 +948,7 @@ fn sample_leg(
     let mut leg = Leg::start(plan, path);
     let mut prev = x.to_vec();
     let mut repairs = 0;
-    let turning = crate::frames::total_absolute_turning;
+    let turning = crate::geom::polygon::total_absolute_turning;
     leg.end_turning = turning(x).min(turning(leg.plan.target()));
     leg.least_turning = turning(x);
     for k in 1..=steps {

@@ -27,9 +27,9 @@
 //! of docs/design.md §7 finishes the job, so the procedure always ends.
 
 use super::flips::FlipTriangulation;
+use super::flips::gate;
 use super::lay_out_rooted;
 use super::layout::{self, fit_similarity, lerp3};
-use super::staged::gate;
 use crate::geom::Point;
 use crate::geom::polygon::triangle_angles;
 use crate::immersion::check_triangles;

@@ -24,9 +24,9 @@
 use super::area_and_centroid;
 use super::curves::{CurveMorphError, CurveMorphOptions, MorphReport, Side, plan};
 use super::staged::{KEY_AREA_TOLERANCE, Leg, moves, recovery_paths};
+use super::{Fallback, Frame, Morph};
 use super::{MorphError, Staged, ThirdVertexPath};
 use crate::correspond::shift_triangles;
-use crate::frames::{Fallback, Frame, Morph};
 use crate::geom::Point;
 use crate::immersion::check_triangles;
 use std::cell::OnceCell;
@@ -43,7 +43,7 @@ pub struct Keyframe {
     /// strictly increasing.
     pub t: f64,
     /// The shape (vertex `i` is vertex `i` of every frame).
-    #[serde(serialize_with = "crate::frames::ser_points")]
+    #[serde(serialize_with = "crate::morph::output::ser_points")]
     pub points: Vec<Point>,
     /// The triangulation of the segment from this key to the next.
     pub triangles: Vec<[u32; 3]>,
@@ -134,7 +134,7 @@ impl Tween {
     /// and the midpoints of the segments between them, divided by the
     /// smaller of its two ends' (the unwind of §7c on the keyed motion).
     fn key_unwind(&self) -> f64 {
-        let turning = crate::frames::total_absolute_turning;
+        let turning = crate::geom::polygon::total_absolute_turning;
         let legs = &self.staged.legs;
         let (Some(first), Some(last)) = (
             legs.first().and_then(|l| l.keys.first()),
@@ -320,7 +320,7 @@ impl Tween {
             // Legs toward intermediates use a guaranteed path when an
             // unguaranteed one was asked for: say so.
             fallbacks.push(Fallback::new(
-                &format!("used the {} path", crate::frames::path_names(&paths)),
+                &format!("used the {} path", super::output::path_names(&paths)),
                 &format!(
                     "the {} path is not guaranteed, so the legs through intermediates use the hybrid path",
                     options.morph.path

@@ -232,6 +232,21 @@ pub fn bbox_diagonal(points: &[Point]) -> f64 {
     (hi - lo).length()
 }
 
+/// Total absolute turning of a closed polygon: the sum over vertices of
+/// the absolute exterior (turning) angle, radians. Measurement only.
+pub fn total_absolute_turning(points: &[Point]) -> f64 {
+    let n = points.len();
+    (0..n)
+        .map(|i| {
+            let a = points[(i + n - 1) % n];
+            let b = points[i];
+            let c = points[(i + 1) % n];
+            let (u, v) = (b - a, c - b);
+            u.perp_dot(v).atan2(u.dot(v)).abs()
+        })
+        .sum()
+}
+
 /// The smallest interior angle (radians) over the triangles `tris` of
 /// `points`; +∞ when there are none. Measurement only.
 pub fn min_triangle_angle(points: &[Point], tris: &[[u32; 3]]) -> f64 {

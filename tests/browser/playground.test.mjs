@@ -578,6 +578,121 @@ test("playground: the scrubber draws the certified keys at any t, without the se
   await page.close();
 });
 
+/** Pixels of the canvas within 2 per channel of each "#rrggbb" colour. */
+async function countColours(page, colours) {
+  return page.evaluate((colours) => {
+    const c = document.getElementById("stage");
+    const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+    const rgb = colours.map((h) => [1, 3, 5].map((i) => parseInt(h.slice(i, i + 2), 16)));
+    const counts = colours.map(() => 0);
+    for (let i = 0; i < d.length; i += 4) {
+      rgb.forEach(([r, g, b], k) => {
+        if (Math.abs(d[i] - r) <= 2 && Math.abs(d[i + 1] - g) <= 2 && Math.abs(d[i + 2] - b) <= 2) counts[k]++;
+      });
+    }
+    return Object.fromEntries(colours.map((h, k) => [h, counts[k]]));
+  }, colours);
+}
+
+test("playground: two multi-shape drawings morph, matched automatically, each shape in its own colours", { timeout: 120000 }, async () => {
+  const page = await context.newPage();
+  const errors = watchConsole(page);
+  await page.goto(url);
+  await exampleLoaded(page);
+  await page.click("#clear-all");
+  // An SVG of several closed shapes is read as a drawing.
+  for (const [i, file] of [[1, "creature-a.svg"], [2, "creature-b.svg"]]) {
+    await page.setInputFiles("#file", join(root, "curves/drawings", file));
+    await page.waitForSelector(`#curves li:nth-child(${i})[data-status=ok]`, { timeout: 20000 });
+  }
+  const verdicts = await page.locator("#curves .verdict").allTextContents();
+  assert.deepEqual(verdicts, ["✓ drawing: 4 shapes, every one self-overlapping", "✓ drawing: 4 shapes, every one self-overlapping"]);
+  assert.match(await page.locator("#curves li:nth-child(1) .facts").textContent(), /^4 shapes · \d+ points · body, shell, horn, eye$/);
+
+  // The matching the page shows is the command line's (auto).
+  assert.equal(await page.inputValue("#opt-match"), "auto");
+  await page.fill("#opt-frames", "12");
+  await page.click("#run");
+  await page.waitForSelector("#stage[data-shown='0']", { timeout: 60000 });
+  const r = await page.evaluate(() => window.immerse.lastMorph);
+  assert.equal(r.kind, "drawings");
+  const status = await page.locator("#status").textContent();
+  assert.match(status, /^12 frames of 4 shapes, every shape of every frame an immersed disk/);
+  assert.ok(status.includes(r.matching), status);
+  assert.match(r.matching, /^matching \(auto\): 'body' → 'body', 'shell' → 'shell', /);
+  const cliJson = join(work, "creature.json");
+  const drawingA = join(work, "creature-a.json");
+  const drawingB = join(work, "creature-b.json");
+  // The same drawings as the page sent them (fitted into the canvas).
+  const sent = await page.evaluate(() => window.immerse.state.curves.map((c) => ({ name: c.name, shapes: c.shapes.map((s) => ({ id: s.id, points: s.points, fill: s.fill, stroke: s.stroke, stroke_width: s.stroke_width, opacity: s.opacity, fill_rule: s.fill_rule })) })));
+  writeFileSync(drawingA, JSON.stringify(sent[0]));
+  writeFileSync(drawingB, JSON.stringify(sent[1]));
+  execFileSync(BIN, ["morph", drawingA, drawingB, "--match", "auto", "--frames", "12", "--json", cliJson, "--quiet"]);
+  const cli = JSON.parse(readFileSync(cliJson));
+  assert.deepEqual(r.morph.matching.pairs.map((p) => [p.source, p.target]), cli.matching.pairs.map((p) => [p.source, p.target]));
+  assert.equal(r.morph.frames.length, 12);
+
+  // Every shape is painted with its own colours: at t = 0 the source's
+  // fills, at t = 1 the target's.
+  const start = await countColours(page, ["#f2cc8f", "#e07a5f", "#3d405b"]);
+  measured.drawing_colours_t0 = start;
+  for (const [c, n] of Object.entries(start)) assert.ok(n > 200, `${c}: ${n} pixels at t = 0`);
+  await page.locator("#scrub").fill("1");
+  await page.waitForSelector("#stage[data-shown='1']");
+  const end = await countColours(page, ["#81b29a", "#3d405b", "#f4f1de", "#f2cc8f"]);
+  measured.drawing_colours_t1 = end;
+  for (const [c, n] of Object.entries(end)) assert.ok(n > 100, `${c}: ${n} pixels at t = 1`);
+  assert.ok(end["#81b29a"] > 5000 && start["#e07a5f"] > 2000, JSON.stringify({ start, end }));
+
+  // The downloads of a drawing morph: its JSON is the answer's, and the
+  // Lottie has one shape group per shape.
+  const get = async (u) => Buffer.from(await (await page.request.get(new URL(u, url).href)).body());
+  assert.deepEqual(JSON.parse(await get(r.urls.json)), r.morph);
+  const lottie = JSON.parse(await get(r.urls.lottie));
+  assert.equal(lottie.op, 12);
+  assert.match((await get(r.urls.svg)).toString(), /^<svg/);
+
+  // A hole is refused with the library's message, on the page.
+  await page.click("#paste-box summary");
+  await page.fill("#paste", '<svg xmlns="http://www.w3.org/2000/svg"><path fill-rule="evenodd" d="M0 0 L100 0 L100 100 L0 100 Z M20 20 L80 20 L80 80 L20 80 Z"/></svg>');
+  await page.click("#add-paste");
+  await page.waitForFunction(() => document.getElementById("status").className === "error");
+  assert.match(await page.locator("#status").textContent(), /^pasted curve \d+: shape 2 \(path 1 subpath 2\) is a hole in shape 1 \(path 1 subpath 1\) \(under the evenodd fill rule it cuts a region out of it\); holes are not supported yet: draw the parts as separate shapes$/);
+  assert.equal(await page.locator("#curves li").count(), 2);
+  const refused = "Failed to load resource: the server responded with a status of 400 (Bad Request)";
+  assert.deepEqual(errors.filter((e) => e !== refused), [], "console errors on the playground");
+  assert.equal(errors.length, 1, JSON.stringify(errors));
+  await page.close();
+});
+
+test("playground: every option list is the server's (GET /api/options)", { timeout: 60000 }, async () => {
+  const page = await context.newPage();
+  const errors = watchConsole(page);
+  await page.goto(url);
+  await page.waitForFunction(() => window.immerse && window.immerse.ready === true);
+  const got = await page.evaluate(async () => {
+    const o = await (await fetch("/api/options")).json();
+    return [...document.querySelectorAll("select[data-option]")].map((sel) => ({
+      option: sel.dataset.option,
+      shown: [...sel.options].map((x) => x.value),
+      selected: sel.value,
+      served: o[sel.dataset.option].values.map((v) => v.name),
+      default: o[sel.dataset.option].default,
+    }));
+  });
+  const options = got.map((g) => g.option).sort();
+  assert.deepEqual(options, ["correspondence", "counts", "easing", "intermediate", "loop", "match", "path", "quality"]);
+  for (const g of got) {
+    assert.deepEqual(g.shown, g.served, `the ${g.option} list`);
+    assert.equal(g.selected, g.default, `the ${g.option} default`);
+  }
+  // The match modes are the command line's --match values.
+  const help = execFileSync(BIN, ["morph", "--help"]).toString();
+  for (const m of got.find((g) => g.option === "match").served) assert.ok(help.includes(m), m);
+  assert.deepEqual(errors, [], "console errors on the playground");
+  await page.close();
+});
+
 test("playground: at 390x844 nothing scrolls sideways and the controls stack", { timeout: 120000 }, async () => {
   const page = await context.newPage();
   await page.setViewportSize(PHONE);

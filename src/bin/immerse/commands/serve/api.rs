@@ -288,6 +288,7 @@ fn options_json(shapes: &ShapeLimits) -> serde_json::Value {
         },
         "max_points": shapes.max_points,
         "max_curves": shapes.max_curves,
+        "max_shapes": jobs::MAX_SHAPES,
     })
 }
 

@@ -382,6 +382,9 @@ pub(super) const DEFAULT_FRAMES: usize = 60;
 pub(super) const DEFAULT_FPS: f64 = 30.0;
 /// Image side when the request does not say (the page's canvas).
 pub(super) const DEFAULT_SIDE: u32 = 600;
+/// Most shapes of one drawing in the playground: pairing them costs the
+/// cube of their number, and every pair is a morph.
+pub(super) const MAX_SHAPES: usize = 64;
 /// Smallest image side.
 pub(super) const MIN_SIDE: u32 = 16;
 
@@ -585,7 +588,7 @@ pub(super) fn match_mode(arg: MatchArg) -> MatchMode {
 
 /// Reads a drawing sent as text (`format` as a curve file's extension:
 /// `svg`, `json`, ...) with the library's reader, within the playground's
-/// limits: at most `max_points` points a shape and
+/// limits: at most [`MAX_SHAPES`] shapes, `max_points` points a shape and
 /// `max_points × max_curves` in all (what a chain of curves may hold).
 /// Holes and unreadable shapes are HTTP 400 with the library's message.
 pub(super) fn read_drawing(
@@ -606,6 +609,15 @@ pub(super) fn read_drawing(
     if drawing.single_curve {
         // One curve: checked as a curve is.
         return Ok(drawing);
+    }
+    if drawing.shapes.len() > MAX_SHAPES {
+        return Err(ApiError::new(
+            413,
+            format!(
+                "{label} has {} shapes; the playground accepts at most {MAX_SHAPES} per drawing (use the immerse command line)",
+                drawing.shapes.len()
+            ),
+        ));
     }
     for (k, s) in drawing.shapes.iter().enumerate() {
         if s.points.len() > limits.max_points {

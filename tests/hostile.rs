@@ -514,15 +514,15 @@ fn svg_of_arcs(port: u16) -> String {
 }
 
 /// 16 morphs at once of two drawings of 64 shapes (the most the
-/// playground takes) of 625 points each (40,000 points, the most a
-/// drawing may hold; 1.1 MB bodies), 240 frames: every pair a morph, and
-/// the pairing of 64 × 64 shapes.
+/// playground takes) of 78 points each (4,992 points: a drawing holds at
+/// most as many as a curve), 240 frames: every pair a morph, and the
+/// pairing of 64 × 64 shapes.
 fn drawing_morphs(port: u16) -> String {
     let drawing = |rx: f64, ry: f64| {
         let shapes: Vec<serde_json::Value> = (0..64)
             .map(|k| {
                 let (cx, cy) = (f64::from(k % 8) * 700.0, f64::from(k / 8) * 700.0);
-                let points: Vec<[f64; 2]> = ellipse(625, rx, ry, 10.0)
+                let points: Vec<[f64; 2]> = ellipse(78, rx, ry, 10.0)
                     .into_iter()
                     .map(|[x, y]| {
                         [

@@ -588,8 +588,8 @@ pub(super) fn match_mode(arg: MatchArg) -> MatchMode {
 
 /// Reads a drawing sent as text (`format` as a curve file's extension:
 /// `svg`, `json`, ...) with the library's reader, within the playground's
-/// limits: at most [`MAX_SHAPES`] shapes, `max_points` points a shape and
-/// `max_points × max_curves` in all (what a chain of curves may hold).
+/// limits: at most [`MAX_SHAPES`] shapes and `max_points` points in all
+/// (what one curve may hold).
 /// Holes and unreadable shapes are HTTP 400 with the library's message.
 pub(super) fn read_drawing(
     bytes: &[u8],
@@ -619,23 +619,15 @@ pub(super) fn read_drawing(
             ),
         ));
     }
-    for (k, s) in drawing.shapes.iter().enumerate() {
-        if s.points.len() > limits.max_points {
-            let what = if s.id.is_empty() {
-                format!("{label}: shape {}", k + 1)
-            } else {
-                format!("{label}: shape {} '{}'", k + 1, s.id)
-            };
-            return Err(too_many_points(&what, s.points.len(), limits.max_points));
-        }
-    }
+    // A frame of a drawing holds all its shapes' points: as many as one
+    // curve's at most, so that its frames take what a curve's take.
     let total: usize = drawing.shapes.iter().map(|s| s.points.len()).sum();
-    let budget = limits.max_points * limits.max_curves;
-    if total > budget {
+    if total > limits.max_points {
         return Err(ApiError::new(
             413,
             format!(
-                "{label}: its shapes have {total} points in all; the playground accepts at most {budget} per drawing (simplify it, or use the immerse command line)"
+                "{label}: its shapes have {total} points in all; the playground accepts at most {} per drawing, as per curve (simplify it, or use the immerse command line)",
+                limits.max_points
             ),
         ));
     }

@@ -513,6 +513,53 @@ fn svg_of_arcs(port: u16) -> String {
     tally.text()
 }
 
+/// 16 morphs at once of two drawings of 64 shapes (the most the
+/// playground takes) of 78 points each (4,992 points: a drawing holds at
+/// most as many as a curve), 240 frames: every pair a morph, and the
+/// pairing of 64 × 64 shapes.
+fn drawing_morphs(port: u16) -> String {
+    let drawing = |rx: f64, ry: f64| {
+        let shapes: Vec<serde_json::Value> = (0..64)
+            .map(|k| {
+                let (cx, cy) = (f64::from(k % 8) * 700.0, f64::from(k / 8) * 700.0);
+                let points: Vec<[f64; 2]> = ellipse(78, rx, ry, 10.0)
+                    .into_iter()
+                    .map(|[x, y]| {
+                        [
+                            ((x + cx) * 10.0).round() / 10.0,
+                            ((y + cy) * 10.0).round() / 10.0,
+                        ]
+                    })
+                    .collect();
+                serde_json::json!({"id": format!("s{k}"), "points": points, "fill": "#3d7cc9"})
+            })
+            .collect();
+        serde_json::json!({ "shapes": shapes })
+    };
+    let body = serde_json::json!({
+        "drawings": [drawing(300.0, 200.0), drawing(200.0, 300.0)],
+        "frames": 240,
+    });
+    let tally = Arc::new(Tally::default());
+    let body = Arc::new(body);
+    let threads: Vec<_> = (0..16)
+        .map(|_| {
+            let (tally, body) = (Arc::clone(&tally), Arc::clone(&body));
+            std::thread::spawn(move || {
+                tally.add(if morph(port, &body).is_some() {
+                    "200"
+                } else {
+                    "refused"
+                });
+            })
+        })
+        .collect();
+    for t in threads {
+        let _ = t.join();
+    }
+    tally.text()
+}
+
 /// 10 morphs of two 5,000-point curves with 240 frames, one after the
 /// other (each answer is 68 MB of JSON, and each is kept as a job).
 fn stored_jobs(port: u16) -> String {
@@ -587,7 +634,7 @@ type Attack = fn(u16) -> String;
 #[test]
 fn hostile_local_traffic() {
     let (bin, assert) = binary();
-    let attacks: [(&str, Attack); 9] = [
+    let attacks: [(&str, Attack); 10] = [
         ("600 idle connections", idle_connections),
         ("600 bodies announced at 2 GiB", huge_content_length),
         ("64 slow bodies", slow_bodies),
@@ -597,6 +644,7 @@ fn hostile_local_traffic() {
         ("32 checks of a 2 MB SVG of arcs", svg_of_arcs),
         ("10 stored morphs of 68 MB", stored_jobs),
         ("32 slow downloads of a 5,000-point SVG", many_downloads),
+        ("16 morphs of two 64-shape drawings", drawing_morphs),
     ];
     let started = Instant::now();
     let mut outcomes = Vec::new();

@@ -690,6 +690,143 @@ fn the_options_offer_every_path_and_rule_and_the_server_takes_them() {
     assert!(tried.len() >= 20, "{tried:?}");
 }
 
+/// The shapes of a drawing as `POST /api/check` reads them, in the
+/// library's drawing JSON.
+fn checked_drawing(server: &Server, file: &str) -> serde_json::Value {
+    let text = std::fs::read_to_string(curve(&format!("drawings/{file}"))).unwrap();
+    let (status, k) = server.post(
+        "/api/check",
+        &serde_json::json!({"data": text, "format": "svg", "name": file}),
+    );
+    assert_eq!(status, 200, "{k}");
+    assert_eq!(k["kind"], "drawing");
+    let shapes: Vec<serde_json::Value> = k["shapes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| {
+            let mut s = s.clone();
+            let m = s.as_object_mut().unwrap();
+            for extra in ["self_overlapping", "reason", "triangles"] {
+                m.remove(extra);
+            }
+            s
+        })
+        .collect();
+    serde_json::json!({"name": k["name"], "shapes": shapes})
+}
+
+/// Drawings through the server: read, matched and morphed as `immerse
+/// morph` does them, their files served, and their limits kept.
+#[test]
+fn serve_morphs_drawings_like_the_cli_within_its_limits() {
+    let server = Server::start(&[]);
+    let a = checked_drawing(&server, "creature-a.svg");
+    let b = checked_drawing(&server, "creature-b.svg");
+    assert_eq!(a["shapes"].as_array().unwrap().len(), 4);
+    let dir = tempfile::tempdir().unwrap();
+    let (pa, pb) = (dir.path().join("a.json"), dir.path().join("b.json"));
+    std::fs::write(&pa, a.to_string()).unwrap();
+    std::fs::write(&pb, b.to_string()).unwrap();
+    for mode in ["id", "order", "auto"] {
+        let (status, reply) = server.post(
+            "/api/morph",
+            &serde_json::json!({"drawings": [a, b], "match": mode, "frames": 5}),
+        );
+        assert_eq!(status, 200, "{mode}: {reply}");
+        assert_eq!(reply["kind"], "drawings");
+        assert!(
+            reply["matching"]
+                .as_str()
+                .unwrap()
+                .starts_with(&format!("matching ({mode}): ")),
+            "{reply}"
+        );
+        // The frames and matching are the command line's on the same
+        // drawings (notices aside: the files are named differently).
+        let json = dir.path().join(format!("{mode}.json"));
+        let (json_s, pa_s, pb_s) = (
+            json.to_str().unwrap(),
+            pa.to_str().unwrap(),
+            pb.to_str().unwrap(),
+        );
+        let out = immerse(&[
+            "morph", "--match", mode, "--frames", "5", "--quiet", "--json", json_s, pa_s, pb_s,
+        ]);
+        assert!(out.status.success(), "{}", stderr(&out));
+        let cli: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+        assert_eq!(reply["morph"]["matching"], cli["matching"], "{mode}");
+        assert_eq!(reply["morph"]["frames"], cli["frames"], "{mode}");
+        for file in ["morph.svg", "morph.lottie.json", "morph.gif", "frame/4.png"] {
+            let url = reply["urls"]["json"]
+                .as_str()
+                .unwrap()
+                .replace("morph.json", file);
+            let (status, body) = server.get(&url);
+            assert_eq!(status, 200, "{file}");
+            assert!(body.len() > 100, "{file}");
+        }
+    }
+    // Bad drawing requests: each a 4xx with a message naming what to do.
+    let hole = "<svg xmlns=\"http://www.w3.org/2000/svg\"><path fill-rule=\"evenodd\" d=\"M0 0 L100 0 L100 100 L0 100 Z M20 20 L80 20 L80 80 L20 80 Z\"/></svg>";
+    let (status, reply) = server.post(
+        "/api/check",
+        &serde_json::json!({"data": hole, "format": "svg", "name": "ring.svg"}),
+    );
+    assert_eq!(status, 400);
+    assert!(error_of(&reply).contains("is a hole in"), "{reply}");
+    let square =
+        |x: f64| serde_json::json!({"points": [[x, 0], [x + 1.0, 0], [x + 1.0, 1], [x, 1]]});
+    let many = serde_json::json!({"shapes": (0..65).map(|k| square(2.0 * f64::from(k))).collect::<Vec<_>>()});
+    let eight = serde_json::json!({"shapes": [{"points": points_of("figure-eight-n64.json")}]});
+    for (body, want_status, want) in [
+        (
+            serde_json::json!({"drawings": [a, b, a]}),
+            400,
+            "give exactly 2",
+        ),
+        (
+            serde_json::json!({"drawings": [a, b], "curves": pair()}),
+            400,
+            "not both",
+        ),
+        (
+            serde_json::json!({"curves": pair(), "match": "auto"}),
+            400,
+            "\"match\" pairs the shapes",
+        ),
+        (
+            serde_json::json!({"drawings": [a, b], "match": "size"}),
+            400,
+            "'size' is not one of id, order, auto",
+        ),
+        (
+            serde_json::json!({"drawings": [a, many]}),
+            413,
+            "at most 64 per drawing",
+        ),
+        (
+            serde_json::json!({"drawings": [a, eight]}),
+            400,
+            "is not self-overlapping",
+        ),
+        (
+            serde_json::json!({"drawings": [a, {"shapes": 3}]}),
+            400,
+            "\"shapes\" is not an array",
+        ),
+    ] {
+        let (status, reply) = server.post("/api/morph", &body);
+        assert_eq!(status, want_status, "{reply}");
+        assert!(error_of(&reply).contains(want), "{want}: {reply}");
+    }
+    let (_, options) = server.get("/api/options");
+    let options: serde_json::Value = serde_json::from_slice(&options).unwrap();
+    assert_eq!(options["max_shapes"], 64);
+    assert_eq!(options["match"]["default"], "auto");
+}
+
 #[test]
 fn morph_writes_lottie() {
     let dir = tempfile::tempdir().unwrap();

@@ -28,7 +28,7 @@ struct Pair {
 
 /// The matching in the JSON.
 #[derive(Serialize)]
-struct MatchingReport {
+pub(crate) struct MatchingReport {
     mode: MatchMode,
     pairs: Vec<Pair>,
     /// Source shapes that vanish (indices).
@@ -39,10 +39,10 @@ struct MatchingReport {
 
 /// `immerse morph --json` on drawings.
 #[derive(Serialize)]
-struct DrawingMorphJson<'a> {
-    matching: MatchingReport,
-    notices: Vec<String>,
-    frames: &'a [DrawingFrame],
+pub(crate) struct DrawingMorphJson<'a> {
+    pub(crate) matching: MatchingReport,
+    pub(crate) notices: Vec<String>,
+    pub(crate) frames: &'a [DrawingFrame],
 }
 
 fn shape_name(d: &Drawing, i: usize) -> String {
@@ -124,7 +124,7 @@ pub(crate) fn run(
     Ok(Outcome::Success)
 }
 
-fn report(a: &Drawing, b: &Drawing, m: &Matching) -> MatchingReport {
+pub(crate) fn report(a: &Drawing, b: &Drawing, m: &Matching) -> MatchingReport {
     MatchingReport {
         mode: m.mode,
         pairs: m
@@ -145,7 +145,7 @@ fn report(a: &Drawing, b: &Drawing, m: &Matching) -> MatchingReport {
 }
 
 /// `matching (auto): 'body' → 'body', …; 'horn' vanishes; 'hat' appears`.
-fn summary(a: &Drawing, b: &Drawing, m: &Matching) -> String {
+pub(crate) fn summary(a: &Drawing, b: &Drawing, m: &Matching) -> String {
     let mut parts: Vec<String> = m
         .pairs
         .iter()
@@ -171,7 +171,7 @@ fn summary(a: &Drawing, b: &Drawing, m: &Matching) -> String {
 
 /// A drawing frame for the renderer: every shape's points in one list,
 /// one styled layer per shape.
-fn render_frame(f: &DrawingFrame) -> render::Frame {
+pub(crate) fn render_frame(f: &DrawingFrame) -> render::Frame {
     let rgba = |c: Color| render::Rgba {
         r: c.r,
         g: c.g,

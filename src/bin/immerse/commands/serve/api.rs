@@ -5,7 +5,7 @@
 use super::http::{self, ApiError, Guard, Phase};
 use super::jobs::{self, Job, JobId, ShapeLimits, Slots, Store, Want};
 use crate::args::{
-    CorrespondenceArg, CountsArg, IntermediateArg, PathArg, QualityArg, ServeLimits,
+    CorrespondenceArg, CountsArg, IntermediateArg, MatchArg, PathArg, QualityArg, ServeLimits,
 };
 use axum::Router;
 use axum::extract::{Path, Request, State as With};
@@ -15,6 +15,7 @@ use axum::routing::{get, post};
 use bytes::Bytes;
 use clap::ValueEnum;
 use immerse::curve::{CurveError, Format};
+use immerse::drawing::{Drawing, MatchMode};
 use immerse::geom::polygon;
 use immerse::{Curve, Quality};
 use immerse_render as render;
@@ -270,6 +271,7 @@ fn options_json(shapes: &ShapeLimits) -> serde_json::Value {
         "correspondence": choices(&CorrespondenceArg::Best),
         "quality": choices(&QualityArg::Delaunay),
         "counts": choices(&CountsArg::Insert),
+        "match": choices(&MatchArg::Auto),
         "easing": { "default": "linear", "values": easings },
         "loop": { "default": render::Loop::Loop.to_string(), "values": loops },
         "frames": { "default": jobs::DEFAULT_FRAMES, "min": 2, "max": shapes.max_frames },
@@ -286,6 +288,7 @@ fn options_json(shapes: &ShapeLimits) -> serde_json::Value {
         },
         "max_points": shapes.max_points,
         "max_curves": shapes.max_curves,
+        "max_shapes": jobs::MAX_SHAPES,
     })
 }
 
@@ -334,9 +337,9 @@ async fn start_post(st: &State, req: Request) -> Result<(Bytes, jobs::Slot, Inst
 async fn check(With(st): With<Arc<State>>, req: Request) -> Response {
     let answer = async {
         let (body, slot, deadline) = start_post(&st, req).await?;
-        let max_points = st.shapes.max_points;
+        let shapes = st.shapes;
         let (report, slot) = jobs::run(slot, deadline, st.slots.timeout(), move |_| {
-            check_curve(&body, max_points)
+            check_curve(&body, &shapes)
         })
         .await?;
         Ok::<_, ApiError>(http::reply("application/json", vec![report], None, slot))
@@ -359,8 +362,11 @@ struct CheckRequest {
 }
 
 /// Reads and checks one curve (on a job's thread: an SVG's parse and the
-/// triangulation take time).
-fn check_curve(body: &[u8], max_points: usize) -> Result<Bytes, ApiError> {
+/// triangulation take time). The text of a file with several closed
+/// shapes (an SVG, or a drawing's JSON) is a drawing: its shapes, each
+/// with its style and verdict (holes refused with the library's message).
+fn check_curve(body: &[u8], shapes: &ShapeLimits) -> Result<Bytes, ApiError> {
+    let max_points = shapes.max_points;
     let req: CheckRequest = http::parse_json(body)?;
     let name = req.name.unwrap_or_else(|| "curve".to_string());
     let curve = match (req.points, req.data) {
@@ -374,6 +380,12 @@ fn check_curve(body: &[u8], max_points: usize) -> Result<Bytes, ApiError> {
                     ))
                 })?;
             let stem = name.rsplit_once('.').map_or(name.as_str(), |(s, _)| s);
+            if matches!(format, Format::Svg | Format::Json) {
+                let drawing = jobs::read_drawing(data.as_bytes(), format, &name, stem, shapes)?;
+                if !drawing.single_curve {
+                    return Ok(Bytes::from(drawing_report(&drawing).to_string()));
+                }
+            }
             let c = Curve::from_bytes(data.as_bytes(), format, &name, stem).map_err(|e| {
                 let status = if matches!(e, CurveError::TooLarge { .. }) {
                     413
@@ -414,6 +426,42 @@ fn check_curve(body: &[u8], max_points: usize) -> Result<Bytes, ApiError> {
     Ok(Bytes::from(report.to_string()))
 }
 
+/// `POST /api/check` on a drawing: every shape with its style (as the
+/// library's drawing JSON has it), whether it is self-overlapping and its
+/// triangulation when it is.
+fn drawing_report(drawing: &Drawing) -> serde_json::Value {
+    let shapes: Vec<serde_json::Value> = drawing
+        .shapes
+        .iter()
+        .zip(drawing.triangulate())
+        .map(|(shape, verdict)| {
+            let mut v = serde_json::to_value(shape).unwrap_or_default();
+            if let Some(m) = v.as_object_mut() {
+                m.insert("self_overlapping".into(), verdict.is_ok().into());
+                m.insert(
+                    "reason".into(),
+                    verdict.as_ref().err().map(ToString::to_string).into(),
+                );
+                m.insert(
+                    "triangles".into(),
+                    serde_json::to_value(verdict.as_ref().ok().map(|im| &im.triangles))
+                        .unwrap_or_default(),
+                );
+            }
+            v
+        })
+        .collect();
+    serde_json::json!({
+        "kind": "drawing",
+        "name": drawing.name,
+        "shape_count": drawing.shapes.len(),
+        "point_count": drawing.shapes.iter().map(|s| s.points.len()).sum::<usize>(),
+        "self_overlapping": shapes.iter().all(|s| s["self_overlapping"] == true),
+        "notices": drawing.notices,
+        "shapes": shapes,
+    })
+}
+
 async fn morph(With(st): With<Arc<State>>, req: Request) -> Response {
     let answer = async {
         let (body, slot, deadline) = start_post(&st, req).await?;
@@ -437,8 +485,47 @@ fn run_morph(
 ) -> Result<(Vec<Bytes>, Job), ApiError> {
     let req: jobs::MorphRequest = http::parse_json(body)?;
     let plan = jobs::plan(req, shapes)?;
+    match &plan.input {
+        jobs::Input::Curves(curves) => morph_curves(&plan, curves, stop),
+        jobs::Input::Drawings(drawings, mode) => morph_drawings(&plan, drawings, *mode, stop),
+    }
+}
+
+/// The links to a job's files.
+fn job_urls(id: JobId) -> serde_json::Value {
+    let base = format!("/api/jobs/{id}");
+    serde_json::json!({
+        "frame": format!("{base}/frame/{{k}}.png"),
+        "gif": format!("{base}/morph.gif"),
+        "svg": format!("{base}/morph.svg"),
+        "lottie": format!("{base}/morph.lottie.json"),
+        "json": format!("{base}/morph.json"),
+        "progress": format!("{base}/progress"),
+    })
+}
+
+/// The answer: the summary, then the morph itself exactly as `immerse
+/// morph --json` writes it (the bytes the job keeps, not a copy).
+fn answer(summary: &serde_json::Value, morph_json: &Bytes) -> Vec<Bytes> {
+    let mut head = summary.to_string();
+    head.pop();
+    head.push_str(",\"morph\":");
+    vec![
+        Bytes::from(head),
+        morph_json.clone(),
+        Bytes::from_static(b"}"),
+    ]
+}
+
+/// A morph of curves: its summary and frames, and its certified keys,
+/// which the page plays (docs/design.md §12 and §13).
+fn morph_curves(
+    plan: &jobs::Plan,
+    curves: &[Curve],
+    stop: &jobs::Stop,
+) -> Result<(Vec<Bytes>, Job), ApiError> {
     let started = Instant::now();
-    let (morph, keys) = jobs::compute(&plan, stop)?;
+    let (morph, keys) = jobs::compute(plan, curves, stop)?;
     let elapsed = started.elapsed();
     let morph_json = exact_json(&crate::commands::morph::WithKeys::new(&morph, &keys))?;
     let id = JobId::random()?;
@@ -447,42 +534,79 @@ fn run_morph(
         c.dedup();
         c
     };
-    let base = format!("/api/jobs/{id}");
+    let frames = crate::commands::render_frames(&morph.frames);
+    let frame_count = morph.frames.len();
+    let (path, fallback) = (morph.path_name(), morph.fallback);
+    let fallbacks = serde_json::to_value(&morph.fallbacks)
+        .map_err(|e| ApiError::new(500, format!("cannot write the morph: {e}")))?;
+    drop(morph);
+    let job = Job::new(id, frames, plan, morph_json, &keys);
     let summary = serde_json::json!({
         "id": id.to_string(),
-        "curves": plan.curves.len(),
-        "frames": morph.frames.len(),
+        "kind": "curves",
+        "curves": curves.len(),
+        "frames": frame_count,
         "key_count": keys.len(),
         "vertices": counts,
-        "path": morph.path_name(),
-        "fallback": morph.fallback,
-        "fallbacks": morph.fallbacks,
+        "path": path,
+        "fallback": fallback,
+        "fallbacks": fallbacks,
         "milliseconds": (elapsed.as_secs_f64() * 1e4).round() / 10.0,
         "size": [plan.style.width, plan.style.height],
+        "view": job.view(),
         "fps": plan.fps,
-        "urls": {
-            "frame": format!("{base}/frame/{{k}}.png"),
-            "gif": format!("{base}/morph.gif"),
-            "svg": format!("{base}/morph.svg"),
-            "lottie": format!("{base}/morph.lottie.json"),
-            "json": format!("{base}/morph.json"),
-            "progress": format!("{base}/progress"),
-        },
+        "urls": job_urls(id),
     });
-    // The summary, then the morph itself, exactly as `immerse morph
-    // --json` writes it (the bytes the job keeps, not a copy).
-    let mut head = summary.to_string();
-    head.pop();
-    head.push_str(",\"morph\":");
-    let answer = vec![
-        Bytes::from(head),
-        morph_json.clone(),
-        Bytes::from_static(b"}"),
-    ];
-    let frames = crate::commands::render_frames(&morph.frames);
-    drop(morph);
-    let job = Job::new(id, frames, &plan, morph_json, &keys);
-    Ok((answer, job))
+    Ok((answer(&summary, &job.morph_json()), job))
+}
+
+/// A morph of two drawings: its summary (with the matching in words) and
+/// its frames, every shape of every frame verified, as `immerse morph
+/// --json` writes them for drawings.
+fn morph_drawings(
+    plan: &jobs::Plan,
+    drawings: &[Drawing; 2],
+    mode: MatchMode,
+    stop: &jobs::Stop,
+) -> Result<(Vec<Bytes>, Job), ApiError> {
+    use crate::commands::drawing_morph;
+    let started = Instant::now();
+    let (frames, matching) = jobs::compute_drawings(plan, drawings, mode, stop)?;
+    let elapsed = started.elapsed();
+    let [a, b] = drawings;
+    let notices: Vec<String> = [a, b]
+        .iter()
+        .enumerate()
+        .flat_map(|(k, d)| {
+            d.notices
+                .iter()
+                .map(move |n| format!("drawing {}: {n}", k + 1))
+        })
+        .collect();
+    let morph_json = exact_json(&drawing_morph::DrawingMorphJson {
+        matching: drawing_morph::report(a, b, &matching),
+        notices,
+        frames: &frames,
+    })?;
+    let id = JobId::random()?;
+    let rendered: Vec<render::Frame> = frames.iter().map(drawing_morph::render_frame).collect();
+    let shapes = frames.first().map_or(0, |f| f.shapes.len());
+    let frame_count = frames.len();
+    drop(frames);
+    let job = Job::new(id, rendered, plan, morph_json, &[]);
+    let summary = serde_json::json!({
+        "id": id.to_string(),
+        "kind": "drawings",
+        "shapes": shapes,
+        "matching": drawing_morph::summary(a, b, &matching),
+        "frames": frame_count,
+        "milliseconds": (elapsed.as_secs_f64() * 1e4).round() / 10.0,
+        "size": [plan.style.width, plan.style.height],
+        "view": job.view(),
+        "fps": plan.fps,
+        "urls": job_urls(id),
+    });
+    Ok((answer(&summary, &job.morph_json()), job))
 }
 
 /// `value` as JSON in a buffer of exactly its length: it is measured

@@ -13,10 +13,15 @@
 //! ([`JobId`]), so no other page can guess a job's URL.
 
 use super::http::ApiError;
-use crate::args::{CorrespondenceArg, CountsArg, IntermediateArg, PathArg, QualityArg};
+use crate::args::{CorrespondenceArg, CountsArg, IntermediateArg, MatchArg, PathArg, QualityArg};
 use crate::commands::keyed::{self, Played};
 use bytes::Bytes;
 use clap::ValueEnum;
+use immerse::curve::{CurveError, Format};
+use immerse::drawing::{
+    Drawing, DrawingError, DrawingFrame, DrawingTween, DrawingTweenError, MatchMode, Matching,
+    match_shapes,
+};
 use immerse::frames::{Fallback, Morph};
 use immerse::morph::{
     Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, Keyframe,
@@ -271,6 +276,20 @@ pub(super) struct Job {
 }
 
 impl Job {
+    /// The morph as `immerse morph --json` writes it.
+    pub(super) fn morph_json(&self) -> Bytes {
+        self.morph_json.clone()
+    }
+
+    /// The view its frames and downloads are drawn in: pixels per unit and
+    /// the pixel position of the origin.
+    pub(super) fn view(&self) -> [f64; 3] {
+        let [tx, ty] = self.view.to_pixel([0.0, 0.0]);
+        [self.view.scale(), tx, ty]
+    }
+
+    /// A finished morph: its rendered `frames` and, for a morph of curves,
+    /// its certified `keys` (none for a drawing's).
     pub(super) fn new(
         id: JobId,
         frames: Vec<render::Frame>,
@@ -292,6 +311,10 @@ impl Job {
                     + f.points.len() * 16
                     + f.triangles.len() * 12
                     + f.outline.len() * 4
+                    + f.layers
+                        .iter()
+                        .map(|l| std::mem::size_of::<render::Layer>() + l.outline.len() * 4)
+                        .sum::<usize>()
             })
             .sum();
         Job {
@@ -325,8 +348,15 @@ pub(super) struct ShapeLimits {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct MorphRequest {
-    /// Two or more curves, `[[x, y], ...]` each, y up; morphed in order.
+    /// Two or more curves, `[[x, y], ...]` each, y up; morphed in order ...
+    #[serde(default)]
     curves: Vec<Vec<[f64; 2]>>,
+    /// ... or two drawings, each in the library's drawing JSON
+    /// (`{"name", "shapes": [{"id", "points", "fill", ...}]}`).
+    drawings: Option<Vec<serde_json::Value>>,
+    /// How the shapes of two drawings are paired (`--match`).
+    #[serde(rename = "match")]
+    match_mode: Option<String>,
     /// A number, checked to be whole here (serde's message for 2.5 would
     /// name a Rust type).
     frames: Option<f64>,
@@ -352,6 +382,9 @@ pub(super) const DEFAULT_FRAMES: usize = 60;
 pub(super) const DEFAULT_FPS: f64 = 30.0;
 /// Image side when the request does not say (the page's canvas).
 pub(super) const DEFAULT_SIDE: u32 = 600;
+/// Most shapes of one drawing in the playground: pairing them costs the
+/// cube of their number, and every pair is a morph.
+pub(super) const MAX_SHAPES: usize = 64;
 /// Smallest image side.
 pub(super) const MIN_SIDE: u32 = 16;
 
@@ -383,9 +416,17 @@ fn whole(field: &str, v: f64, lo: u64, hi: u64, unit: &str) -> Result<u64, ApiEr
     }
 }
 
+/// What a morph job morphs.
+pub(super) enum Input {
+    /// Two or more curves, in order.
+    Curves(Vec<Curve>),
+    /// Two drawings, their shapes paired by the mode.
+    Drawings(Box<[Drawing; 2]>, MatchMode),
+}
+
 /// Everything a morph job needs, checked.
 pub(super) struct Plan {
-    pub(super) curves: Vec<Curve>,
+    pub(super) input: Input,
     times: Vec<f64>,
     /// The easing is not linear: every frame is a key of the Lottie and
     /// SVG too.
@@ -397,7 +438,17 @@ pub(super) struct Plan {
 }
 
 pub(super) fn plan(req: MorphRequest, limits: &ShapeLimits) -> Result<Plan, ApiError> {
-    if req.curves.len() < 2 || req.curves.len() > limits.max_curves {
+    if req.drawings.is_some() && !req.curves.is_empty() {
+        return Err(ApiError::bad(
+            "give either \"curves\" or \"drawings\", not both",
+        ));
+    }
+    if req.drawings.is_none() && req.match_mode.is_some() {
+        return Err(ApiError::bad(
+            "\"match\" pairs the shapes of two \"drawings\"; curves need none",
+        ));
+    }
+    if req.drawings.is_none() && (req.curves.len() < 2 || req.curves.len() > limits.max_curves) {
         return Err(ApiError::bad(format!(
             "\"curves\" holds {} curve(s); give from 2 to {}",
             req.curves.len(),
@@ -477,13 +528,19 @@ pub(super) fn plan(req: MorphRequest, limits: &ShapeLimits) -> Result<Plan, ApiE
         })
         .with_morph(MorphOptions::DEFAULT.with_path(ThirdVertexPath::from(path)))
         .with_key_tolerance(limits.key_tolerance);
-    let curves = curves_from(req.curves, limits.max_points)?;
+    let input = match req.drawings {
+        Some(drawings) => {
+            let mode: MatchArg = value("match", req.match_mode.as_deref(), MatchArg::Auto)?;
+            Input::Drawings(drawings_from(drawings, limits)?, match_mode(mode))
+        }
+        None => Input::Curves(curves_from(req.curves, limits.max_points)?),
+    };
     let style = render::Style::DEFAULT
         .with_size(w, h)
         .with_wireframe(req.wireframe)
         .with_onion_skin(req.onion);
     Ok(Plan {
-        curves,
+        input,
         times,
         eased: easing != render::Easing::Linear,
         options,
@@ -520,6 +577,127 @@ pub(super) fn curves_from(
     Ok(out)
 }
 
+/// The library's pairing mode for a `--match` value.
+pub(super) fn match_mode(arg: MatchArg) -> MatchMode {
+    match arg {
+        MatchArg::Id => MatchMode::Id,
+        MatchArg::Order => MatchMode::Order,
+        MatchArg::Auto => MatchMode::Auto,
+    }
+}
+
+/// Reads a drawing sent as text (`format` as a curve file's extension:
+/// `svg`, `json`, ...) with the library's reader, within the playground's
+/// limits: at most [`MAX_SHAPES`] shapes and `max_points` points in all
+/// (what one curve may hold).
+/// Holes and unreadable shapes are HTTP 400 with the library's message.
+pub(super) fn read_drawing(
+    bytes: &[u8],
+    format: Format,
+    label: &str,
+    name: &str,
+    limits: &ShapeLimits,
+) -> Result<Drawing, ApiError> {
+    let drawing = Drawing::from_bytes(bytes, format, label, name).map_err(|e| {
+        let status = if matches!(e, DrawingError::Curve(CurveError::TooLarge { .. })) {
+            413
+        } else {
+            400
+        };
+        ApiError::new(status, e.to_string())
+    })?;
+    if drawing.single_curve {
+        // One curve: checked as a curve is.
+        return Ok(drawing);
+    }
+    if drawing.shapes.len() > MAX_SHAPES {
+        return Err(ApiError::new(
+            413,
+            format!(
+                "{label} has {} shapes; the playground accepts at most {MAX_SHAPES} per drawing (use the immerse command line)",
+                drawing.shapes.len()
+            ),
+        ));
+    }
+    // A frame of a drawing holds all its shapes' points: as many as one
+    // curve's at most, so that its frames take what a curve's take.
+    let total: usize = drawing.shapes.iter().map(|s| s.points.len()).sum();
+    if total > limits.max_points {
+        return Err(ApiError::new(
+            413,
+            format!(
+                "{label}: its shapes have {total} points in all; the playground accepts at most {} per drawing, as per curve (simplify it, or use the immerse command line)",
+                limits.max_points
+            ),
+        ));
+    }
+    Ok(drawing)
+}
+
+/// The two drawings of a morph, each given as the library's drawing JSON,
+/// every shape self-overlapping (else HTTP 400 naming it).
+fn drawings_from(
+    raw: Vec<serde_json::Value>,
+    limits: &ShapeLimits,
+) -> Result<Box<[Drawing; 2]>, ApiError> {
+    let [a, b]: [serde_json::Value; 2] = raw.try_into().map_err(|raw: Vec<_>| {
+        ApiError::bad(format!(
+            "\"drawings\" holds {} drawing(s); give exactly 2",
+            raw.len()
+        ))
+    })?;
+    let read = |k: usize, value: serde_json::Value| -> Result<Drawing, ApiError> {
+        let label = format!("drawing {k}");
+        let name = value
+            .get("name")
+            .and_then(serde_json::Value::as_str)
+            .unwrap_or(&label)
+            .to_string();
+        let bytes =
+            serde_json::to_vec(&value).map_err(|e| ApiError::bad(format!("{label}: {e}")))?;
+        let drawing = read_drawing(&bytes, Format::Json, &label, &name, limits)?;
+        drawing
+            .require_self_overlapping(&label)
+            .map_err(|e| ApiError::bad(e.to_string()))?;
+        Ok(drawing)
+    };
+    Ok(Box::new([read(1, a)?, read(2, b)?]))
+}
+
+/// Runs the morph of two drawings: every matched pair of shapes as a
+/// [`Tween`], unmatched shapes growing or shrinking (`immerse morph` on
+/// drawings), a verified frame at each of the plan's times. Frames stop
+/// when `stop` says so; planning runs to its end.
+pub(super) fn compute_drawings(
+    plan: &Plan,
+    drawings: &[Drawing; 2],
+    mode: MatchMode,
+    stop: &Stop,
+) -> Result<(Vec<DrawingFrame>, Matching), ApiError> {
+    let [a, b] = drawings;
+    let matching = match_shapes(a, b, mode);
+    let tween = DrawingTween::new(a, b, &matching, &plan.options).map_err(|e| match e {
+        DrawingTweenError::NotSelfOverlapping { .. }
+        | DrawingTweenError::Pair {
+            source: CurveMorphError::NotSelfOverlapping { .. },
+            ..
+        } => ApiError::bad(e.to_string()),
+        other => ApiError::new(500, format!("the morph failed: {other}")),
+    })?;
+    let mut frames = Vec::with_capacity(plan.times.len());
+    for &t in &plan.times {
+        if stop.now() {
+            return Err(ApiError::new(503, "the morph was stopped"));
+        }
+        frames.push(
+            tween
+                .frame(t)
+                .map_err(|e| ApiError::new(500, format!("the morph failed: {e}")))?,
+        );
+    }
+    Ok((frames, matching))
+}
+
 /// Runs the morph of a plan, with its keys: with two curves one [`Tween`],
 /// whose frames are exactly those of `immerse morph` with the same options;
 /// with more a [`Sequence`] (vertex counts equalised once across all
@@ -527,10 +705,13 @@ pub(super) fn curves_from(
 /// eased times of the whole chain on the sequence's pace axis, so the
 /// frames meet exactly at each key. Frames stop when `stop` says so;
 /// planning runs to its end.
-pub(super) fn compute(plan: &Plan, stop: &Stop) -> Result<(Morph, Vec<Keyframe>), ApiError> {
+pub(super) fn compute(
+    plan: &Plan,
+    curves: &[Curve],
+    stop: &Stop,
+) -> Result<(Morph, Vec<Keyframe>), ApiError> {
     let stopped = || ApiError::new(503, "the morph was stopped");
     let fail = |e: immerse::morph::MorphError| ApiError::new(500, format!("the morph failed: {e}"));
-    let curves = &plan.curves;
     if curves.len() == 2 {
         let tween = Tween::new(&curves[0].points, &curves[1].points, &plan.options).map_err(
             |e| match e {
@@ -754,8 +935,21 @@ pub(super) fn make(job: &Job, want: &Want, stop: &Stop) -> Result<File, ApiError
 }
 
 /// The job's Lottie or animated SVG from its keys, certified as written
-/// (as `immerse morph -o` writes it).
+/// (as `immerse morph -o` writes it); a drawing's, which has no keys, from
+/// its frames, one styled shape group per shape (as `immerse morph -o`
+/// writes a drawing's).
 fn keyed_file(job: &Job, kind: keyed::Kind) -> Result<Vec<u8>, ApiError> {
+    if job.played.keys.is_empty() {
+        let written = match kind {
+            keyed::Kind::Lottie => render::lottie(&job.frames, &job.style, job.fps, job.looping),
+            keyed::Kind::AnimatedSvg => {
+                render::animated_svg(&job.frames, &job.style, job.fps, job.looping)
+            }
+        };
+        return written
+            .map(String::into_bytes)
+            .map_err(|e| ApiError::new(500, format!("{e:#}")));
+    }
     keyed::write(
         kind,
         &job.played,

@@ -5,7 +5,7 @@
 //!
 //! ```text
 //! cargo run --release --example motion_view -- [--set motion|reference|stress]
-//!     [--seed S] [--start I] [--pairs N] [--path P] [--rows] [--failures]
+//!     [--seed S] [--start I] [--pairs N] [--path P] [--correspondence C] [--rows] [--failures]
 //! ```
 //!
 //! `--set stress` draws pairs `I..I+N` of the stress generators with seed
@@ -180,6 +180,20 @@ fn main() {
     if let Some(p) = flag(&args, "--path") {
         let path: ThirdVertexPath = p.parse().expect("a path name");
         options = options.with_morph(MorphOptions::DEFAULT.with_path(path));
+    }
+    if let Some(c) = flag(&args, "--correspondence") {
+        use immerse::morph::Correspondence as C;
+        let rule = match c.as_str() {
+            "best" => C::Best,
+            "identity" => C::Identity,
+            "pivot" => C::Pivot,
+            "min-flips" => C::MinFlips,
+            "shape" => C::Shape,
+            "outline" => C::Outline,
+            "corners" => C::Corners,
+            other => panic!("unknown correspondence {other}"),
+        };
+        options = options.with_correspondence(rule);
     }
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("curves");
     let start = Instant::now();

@@ -72,7 +72,7 @@ pub struct Metrics {
 /// Relative tolerance of the numerical rank: singular values below
 /// 1e-6 × the largest are treated as zero (docs/design.md §8). Areas carry
 /// relative rounding errors near 1e-16 per operation, far below it.
-pub const RANK_TOLERANCE: f64 = 1e-6;
+pub(crate) const RANK_TOLERANCE: f64 = 1e-6;
 
 /// Computes the metrics of a frame sequence.
 pub fn metrics(frames: &[Frame]) -> Metrics {

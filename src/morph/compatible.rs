@@ -29,7 +29,7 @@ pub const DEFAULT_FAN_MARGIN: f64 = 0.05;
 /// Angle floor (radians) of the straight path: a triangle of the guide
 /// thinner than min(this, half its smallest angle in the angle rule) is
 /// lifted toward the angle rule (about 0.5°).
-pub const STRAIGHT_MIN_ANGLE: f64 = 0.5 * std::f64::consts::PI / 180.0;
+pub(crate) const STRAIGHT_MIN_ANGLE: f64 = 0.5 * std::f64::consts::PI / 180.0;
 
 /// The fitted paths (`straight`, `polar`, `angle`, `hybrid`) keep their
 /// total area between these multiples of the smaller and the larger
@@ -1050,7 +1050,11 @@ pub fn lay_out(
 
 /// [`lay_out`] from a given rooting of the dual tree (a root near the
 /// tree's centre keeps the propagation depth, and so the rounding, small).
-pub fn lay_out_rooted(rooted: &Rooted, triangles: &[[u32; 3]], angles: &[[f64; 3]]) -> Vec<Point> {
+pub(crate) fn lay_out_rooted(
+    rooted: &Rooted,
+    triangles: &[[u32; 3]],
+    angles: &[[f64; 3]],
+) -> Vec<Point> {
     let ordered: Vec<[f64; 3]> = (0..triangles.len())
         .map(|tri| {
             let [x, y] = rooted.base[tri];
@@ -1065,8 +1069,8 @@ pub fn lay_out_rooted(rooted: &Rooted, triangles: &[[u32; 3]], angles: &[[f64; 3
 
 #[cfg(test)]
 pub(crate) mod tests {
-    use crate::morph::Frame;
     use super::*;
+    use crate::morph::Frame;
     use std::f64::consts::PI;
 
     #[test]

@@ -8,7 +8,7 @@ use super::{MorphError, MorphOptions, Staged, ThirdVertexPath};
 use crate::correspond::{insert_vertices, resample_arc_length, shift_triangles};
 use crate::geom::Point;
 use crate::geom::polygon::min_triangle_angle as min_angle;
-use crate::immersion::{Immersion, NotSelfOverlapping};
+use crate::immersion::NotSelfOverlapping;
 use crate::quality::{Quality, triangulate_with};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -203,20 +203,6 @@ pub fn equal_counts(a: &[Point], b: &[Point], counts: Counts) -> (Vec<Point>, Ve
     }
 }
 
-/// Triangulates one curve, naming it in the error.
-///
-/// # Errors
-///
-/// [`CurveMorphError::NotSelfOverlapping`].
-pub fn triangulate_side(
-    points: &[Point],
-    quality: Quality,
-    side: Side,
-) -> Result<Immersion, CurveMorphError> {
-    triangulate_with(points, quality)
-        .map_err(|reason| CurveMorphError::NotSelfOverlapping { side, reason })
-}
-
 /// The intermediate that staged flips happen on the way to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Intermediate {
@@ -287,6 +273,31 @@ impl Correspondence {
         Correspondence::Best,
     ];
 
+    /// True for the rules offered only with the `experimental` cargo
+    /// feature: `outline`, `pivot`, `shape` and `identity`. Each is
+    /// dominated on the motion measures of docs/design.md §7c by `best`,
+    /// `corners` or `min-flips` (docs/motion-by-option.md); `best` still
+    /// plans with the outline rule inside.
+    pub fn is_experimental(self) -> bool {
+        matches!(
+            self,
+            Correspondence::Outline
+                | Correspondence::Pivot
+                | Correspondence::Shape
+                | Correspondence::Identity
+        )
+    }
+
+    /// The rules a user may ask for in this build: `best`, `corners` and
+    /// `min-flips`, and the experimental ones with the `experimental`
+    /// feature.
+    pub fn offered() -> Vec<Correspondence> {
+        Correspondence::ALL
+            .into_iter()
+            .filter(|c| cfg!(feature = "experimental") || !c.is_experimental())
+            .collect()
+    }
+
     /// The CLI name.
     pub fn as_str(self) -> &'static str {
         match self {
@@ -301,10 +312,30 @@ impl Correspondence {
     }
 }
 
+impl std::str::FromStr for Correspondence {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let offered = Correspondence::offered();
+        let names: Vec<&str> = offered.iter().map(|c| c.as_str()).collect();
+        match Correspondence::ALL.into_iter().find(|c| c.as_str() == s) {
+            Some(c) if offered.contains(&c) => Ok(c),
+            Some(c) => Err(super::paths::experimental(
+                "correspondence",
+                c.as_str(),
+                &names,
+            )),
+            None => Err(format!(
+                "unknown correspondence '{s}'; use {}",
+                names.join(", ")
+            )),
+        }
+    }
+}
+
 /// Normalised shape-matching cost of every cyclic shift k: Σ |â_i −
 /// b̂_{i+k}|², with both curves centred at their vertex mean and scaled
 /// to unit RMS radius. O(n²).
-pub fn shape_cost_per_shift(a: &[Point], b: &[Point]) -> Vec<f64> {
+pub(crate) fn shape_cost_per_shift(a: &[Point], b: &[Point]) -> Vec<f64> {
     let norm = |p: &[Point]| -> Vec<Point> {
         let c = p.iter().copied().sum::<Point>() / p.len() as f64;
         let r = (p.iter().map(|q| (*q - c).length_squared()).sum::<f64>() / p.len() as f64)
@@ -326,7 +357,7 @@ pub fn shape_cost_per_shift(a: &[Point], b: &[Point]) -> Vec<f64> {
 /// Chooses the cyclic shift k (target vertex `i + k` matches source
 /// vertex `i`) by `rule` ([`Correspondence::Best`] needs trial morphs,
 /// which [`morph_curves`] runs; here it means `MinFlips`).
-pub fn choose_shift(
+pub(crate) fn choose_shift(
     a: &[Point],
     b: &[Point],
     ta: &[[u32; 3]],

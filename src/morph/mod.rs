@@ -13,18 +13,16 @@ mod target;
 mod tween;
 
 pub use compatible::{
-    Compatible, CompatibleError, DEFAULT_FAN_MARGIN, STRAIGHT_AREA_RANGE, STRAIGHT_MIN_ANGLE,
-    area_and_centroid, lay_out, lay_out_rooted,
+    Compatible, CompatibleError, DEFAULT_FAN_MARGIN, STRAIGHT_AREA_RANGE, area_and_centroid,
+    lay_out,
 };
 pub use curves::{
     Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, KEY_TOLERANCE,
-    MAX_KEY_TOLERANCE, MorphReport, Side, choose_shift, equal_counts, morph_curves,
-    shape_cost_per_shift, triangulate_side,
+    MAX_KEY_TOLERANCE, MorphReport, Side, equal_counts, morph_curves,
 };
 pub use output::{Fallback, Frame, Morph};
 pub use paths::ThirdVertexPath;
-pub use staged::{LEG_STEP, SCHEDULE_STEP, Staged, disk_for};
-pub use target::{TARGET_FAN_MARGIN, TARGET_MIN_ANGLE};
+pub use staged::Staged;
 pub use tween::{Keyframe, Tween, timed_keyframes};
 
 use crate::tree::RootChoice;
@@ -53,12 +51,6 @@ impl MorphOptions {
     /// Sets the third-vertex path.
     pub fn with_path(mut self, path: ThirdVertexPath) -> Self {
         self.path = path;
-        self
-    }
-
-    /// Sets the root choice.
-    pub fn with_root(mut self, root: RootChoice) -> Self {
-        self.root = root;
         self
     }
 

@@ -77,6 +77,32 @@ impl ThirdVertexPath {
         }
     }
 
+    /// True for the paths offered only with the `experimental` cargo
+    /// feature: `polar`, `angle`, `rotate-slide` and `linear`. Each is
+    /// dominated on the motion measures of docs/design.md §7c by `rigid`,
+    /// `straight` or `hybrid` (docs/motion-by-option.md). The planner
+    /// still uses `polar` and `angle` inside: on the last leg and to
+    /// recover a leg.
+    pub fn is_experimental(self) -> bool {
+        matches!(
+            self,
+            ThirdVertexPath::Polar
+                | ThirdVertexPath::Angle
+                | ThirdVertexPath::RotateSlide
+                | ThirdVertexPath::Linear
+        )
+    }
+
+    /// The paths a user may ask for in this build: `rigid`, `hybrid` and
+    /// `straight`, and the experimental ones with the `experimental`
+    /// feature.
+    pub fn offered() -> Vec<ThirdVertexPath> {
+        ThirdVertexPath::ALL
+            .into_iter()
+            .filter(|p| cfg!(feature = "experimental") || !p.is_experimental())
+            .collect()
+    }
+
     /// True for the paths that guarantee an immersion for every t.
     pub fn is_guaranteed(self) -> bool {
         matches!(
@@ -99,14 +125,26 @@ impl std::fmt::Display for ThirdVertexPath {
 impl std::str::FromStr for ThirdVertexPath {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        ThirdVertexPath::ALL
-            .into_iter()
-            .find(|p| p.as_str() == s)
-            .ok_or_else(|| {
-                let names: Vec<&str> = ThirdVertexPath::ALL.iter().map(|p| p.as_str()).collect();
-                format!("unknown path '{s}'; use {}", names.join(", "))
-            })
+        let offered = ThirdVertexPath::offered();
+        let names: Vec<&str> = offered.iter().map(|p| p.as_str()).collect();
+        match ThirdVertexPath::ALL.into_iter().find(|p| p.as_str() == s) {
+            Some(p) if offered.contains(&p) => Ok(p),
+            Some(p) => Err(experimental("path", p.as_str(), &names)),
+            None => Err(format!("unknown path '{s}'; use {}", names.join(", "))),
+        }
     }
+}
+
+/// The refusal of an experimental option `name` of `what` (a path, a
+/// correspondence) in a build without the `experimental` feature, naming
+/// the values offered instead.
+pub(crate) fn experimental(what: &str, name: &str, offered: &[&str]) -> String {
+    format!(
+        "the {what} '{name}' is experimental: it does worse than {} on the motion measures \
+         (docs/motion-by-option.md); use one of those, or build immerse with \
+         `--features experimental` to keep it",
+        offered.join(", ")
+    )
 }
 
 /// Base-frame coordinates of `w` relative to the base `x → y`.

@@ -39,11 +39,7 @@ use crate::immersion::{check, check_triangles};
 use crate::tree::{DualTree, RootChoice, disk_positions};
 
 /// Step of the walk along one leg, in the leg's own parameter.
-pub const LEG_STEP: f64 = 1.0 / 32.0;
-
-/// The staged path's flip schedule step (kept for the public API): the
-/// same as [`LEG_STEP`].
-pub const SCHEDULE_STEP: f64 = LEG_STEP;
+pub(crate) const LEG_STEP: f64 = 1.0 / 32.0;
 
 /// One stretch of the path: a compatible morph under a fixed
 /// triangulation, used for its local parameter in `[0, s_end]`, with the
@@ -354,7 +350,7 @@ pub struct Staged {
 /// The disk of docs/design.md §7: vertices on a circle spaced in proportion to
 /// the curve's edge lengths (with a floor, so that no two coincide), with
 /// the curve's area (as the polygon it forms) and area centroid.
-pub fn disk_for(points: &[Point], area: f64, centroid: Point) -> Vec<Point> {
+pub(crate) fn disk_for(points: &[Point], area: f64, centroid: Point) -> Vec<Point> {
     let unit = disk_positions(points);
     let a_unit = signed_area(&unit);
     let c_unit = crate::geom::polygon::area_centroid(&unit);

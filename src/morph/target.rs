@@ -26,9 +26,9 @@
 //! angles (a local unblock); if that is not enough either, the disk route
 //! of docs/design.md §7 finishes the job, so the procedure always ends.
 
+use super::compatible::lay_out_rooted;
 use super::flips::FlipTriangulation;
 use super::flips::gate;
-use super::lay_out_rooted;
 use super::layout::{self, fit_similarity, lerp3};
 use crate::geom::Point;
 use crate::geom::polygon::triangle_angles;
@@ -37,10 +37,10 @@ use crate::tree::DualTree;
 use std::f64::consts::{PI, TAU};
 
 /// Smallest measured angle kept when building the target (δ ≈ 1°).
-pub const TARGET_MIN_ANGLE: f64 = PI / 180.0;
+pub(crate) const TARGET_MIN_ANGLE: f64 = PI / 180.0;
 
 /// Margin ε kept below 2π in every fan of the target (radians).
-pub const TARGET_FAN_MARGIN: f64 = 0.05;
+pub(crate) const TARGET_FAN_MARGIN: f64 = 0.05;
 
 /// The corner angles of each triangle on the disk and on the other curve,
 /// kept from one target to the next: a flip replaces two triangles in
@@ -316,7 +316,7 @@ mod tests {
         let ta = triangulate_with(&a, Quality::Delaunay).unwrap().triangles;
         let tb = triangulate_with(&b, Quality::Delaunay).unwrap().triangles;
         let (area, c) = area_and_centroid(&a, &ta);
-        let disk = super::super::disk_for(&a, area, c);
+        let disk = super::super::staged::disk_for(&a, area, c);
         // A's triangulation on B: some triangles are inverted there; the
         // target is an immersion anyway.
         let mut angles = TargetAngles::default();

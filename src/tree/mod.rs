@@ -54,8 +54,6 @@ pub enum RootChoice {
     /// triangulation (Mukherjee & Gopi §5).
     #[default]
     Disk,
-    /// The centre of the dual tree (smallest eccentricity in hops).
-    TreeCentre,
 }
 
 /// A dual tree rooted at one triangle: breadth-first order, parents and
@@ -278,10 +276,9 @@ fn argmax(v: &[usize]) -> usize {
 /// [`RootChoice::Disk`]: place the vertices on a circle at angles
 /// proportional to the curve's cumulative edge length (the disk image of
 /// the triangulation) and take the triangle whose centroid is closest to
-/// the centre. [`RootChoice::TreeCentre`]: [`DualTree::centre`].
+/// the centre.
 pub fn root_triangle(tree: &DualTree, points: &[Point], choice: RootChoice) -> usize {
     match choice {
-        RootChoice::TreeCentre => tree.centre(),
         RootChoice::Disk => {
             let disk = disk_positions(points);
             let mut best = (f64::INFINITY, 0);

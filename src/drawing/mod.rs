@@ -31,7 +31,7 @@ mod tween;
 pub use matching::{MatchMode, Matching, UNMATCHED_COST, match_shapes};
 pub use style::{Color, FillRule, Style};
 pub use tween::{
-    DrawingFrame, DrawingTween, DrawingTweenError, FrameShape, GROWN_SCALE, ShapeRole,
+    DrawingFrame, DrawingTween, DrawingTweenError, FrameShape, GROWN_SCALE, ShapeKeys, ShapeRole,
 };
 
 use crate::curve::{Curve, CurveError, Format, MAX_FILE_BYTES};

@@ -446,7 +446,7 @@ fn drawing_tween_frames_are_immersions_with_growing_and_fading_shapes() {
 
 /// `immerse morph` on drawings: the matching in the summary and the JSON,
 /// every shape of every JSON frame an immersed disk, styles carried into
-/// the SVG frames; animated SVG and Lottie refused for now.
+/// the SVG frames, the animated SVG and the Lottie file.
 #[test]
 fn morph_drawings_reports_matching_and_draws_every_shape_with_its_style() {
     use crate::util::{immerse_in, stderr};
@@ -540,10 +540,11 @@ fn morph_drawings_reports_matching_and_draws_every_shape_with_its_style() {
     );
     assert!(
         svg.contains("values=\"1.000;0.667;0.333;0.000\""),
-        "the horn fades out"
+        "the horn fades out: {svg}"
     );
-    // Lottie: one shape group per shape (top first) with its own fill and
-    // stroke, then the background; the body's fill runs to the target's.
+    // Lottie: one layer of the shapes, one shape group per shape (top
+    // first) with its own fill and stroke, then the background layer; the
+    // body's fill runs to the target's.
     let out = immerse_in(
         d.path(),
         &[
@@ -554,17 +555,11 @@ fn morph_drawings_reports_matching_and_draws_every_shape_with_its_style() {
     let lottie: serde_json::Value =
         serde_json::from_slice(&std::fs::read(d.path().join("a.json")).unwrap()).unwrap();
     let groups = lottie["layers"][0]["shapes"].as_array().unwrap();
+    assert_eq!(lottie["layers"][1]["nm"], "Background");
     let names: Vec<&str> = groups.iter().map(|g| g["nm"].as_str().unwrap()).collect();
     assert_eq!(
         names,
-        [
-            "Shape 5",
-            "Shape 4",
-            "Shape 3",
-            "Shape 2",
-            "Shape 1",
-            "Background"
-        ]
+        ["Shape 5", "Shape 4", "Shape 3", "Shape 2", "Shape 1",]
     );
     let body = groups[4]["it"].as_array().unwrap();
     let fill = body.iter().find(|i| i["ty"] == "fl").unwrap();

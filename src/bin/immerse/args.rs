@@ -196,6 +196,11 @@ pub(crate) struct AnimateArgs {
     /// Which shapes of an SVG drawing are the keys (default auto).
     #[arg(long, value_enum)]
     pub(crate) svg_keys: Option<SvgKeysArg>,
+    /// For keys that are drawings (files of several shapes, or an SVG
+    /// whose groups hold several): which shape of a key becomes which of
+    /// the next (docs/design.md §2b).
+    #[arg(long = "match", value_enum, default_value_t = MatchArg::Auto)]
+    pub(crate) match_mode: MatchArg,
     /// Frames over the whole sequence, holds included (default: the
     /// timeline's, else 2 seconds per segment at --fps).
     #[arg(long, value_parser = clap::value_parser!(u32).range(2..=100_000))]

@@ -487,7 +487,7 @@ fn report(a: &Drawing, b: &Drawing, m: &Matching) -> MatchingReport {
 }
 
 /// `matching (auto): 'body' → 'body', …; 'horn' vanishes; 'hat' appears`.
-fn summary(a: &Drawing, b: &Drawing, m: &Matching) -> String {
+pub(crate) fn summary(a: &Drawing, b: &Drawing, m: &Matching) -> String {
     let mut parts: Vec<String> = m
         .pairs
         .iter()

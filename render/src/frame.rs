@@ -164,7 +164,7 @@ impl DrawingKeys<'_> {
                     return Err(bad(0, t.paint_times.first().copied().unwrap_or(f64::NAN)));
                 }
                 for (k, w) in t.paint_times.windows(2).enumerate() {
-                    if !(w[1] > w[0]) {
+                    if w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater) {
                         return Err(bad(k + 1, w[1]));
                     }
                 }

@@ -185,8 +185,9 @@ pub(crate) enum SvgKeysArg {
 /// Arguments of `immerse animate`.
 #[derive(Debug, Args)]
 pub(crate) struct AnimateArgs {
-    /// The keys in order: two or more curve files, or one SVG drawing
-    /// whose shapes (or groups, or layers) are the keys.
+    /// The keys in order: two or more curve or drawing files, or one SVG
+    /// whose shapes (or groups, or layers) are the keys; a group of
+    /// several shapes is a drawing key.
     #[arg(value_name = "KEY", required_unless_present = "timeline")]
     pub(crate) keys: Vec<PathBuf>,
     /// A timeline file (JSON): keys with times or durations, holds,

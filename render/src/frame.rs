@@ -66,6 +66,125 @@ pub struct Layer {
     pub evenodd: bool,
 }
 
+impl Layer {
+    /// The layer's paint (everything but its outline and fill rule).
+    pub fn paint(&self) -> Paint {
+        Paint {
+            fill: self.fill,
+            stroke: self.stroke,
+            stroke_width: self.stroke_width,
+            opacity: self.opacity,
+        }
+    }
+}
+
+/// The paint of one shape of a drawing at one moment.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Paint {
+    /// Fill colour; `None`: not filled.
+    pub fill: Option<crate::Rgba>,
+    /// Stroke colour; `None`: not stroked.
+    pub stroke: Option<crate::Rgba>,
+    /// Stroke width in world units (scaled with the view).
+    pub stroke_width: f64,
+    /// Opacity in [0, 1] of the whole shape.
+    pub opacity: f64,
+}
+
+/// One shape of a keyed drawing ([`DrawingKeys`]): its outline at its key
+/// times, played linearly in between, and its paint at its paint times.
+#[derive(Clone, Copy, Debug)]
+pub struct Track<'a> {
+    /// The key shapes; each one's `outline` is the shape.
+    pub shapes: &'a [Frame],
+    /// Their frame positions: finite, strictly increasing, the first 0
+    /// and the last the animation's last frame.
+    pub times: &'a [f64],
+    /// The paint at each of `paint_times`.
+    pub paints: &'a [Paint],
+    /// Frame positions of the paints, as `times` are.
+    pub paint_times: &'a [f64],
+    /// True for the even-odd fill rule, false for nonzero.
+    pub evenodd: bool,
+}
+
+/// A stretch of a keyed drawing: the shapes shown from frame position
+/// `start` until the next scene's start (the last scene until the end).
+#[derive(Clone, Copy, Debug)]
+pub struct Scene<'a> {
+    /// Where it starts showing: 0 for the first scene, strictly
+    /// increasing.
+    pub start: f64,
+    /// Its shapes, bottom first (painting order).
+    pub tracks: &'a [Track<'a>],
+}
+
+/// A drawing written as keyframes by [`crate::lottie_drawing`] and
+/// [`crate::animated_svg_drawing`]: scenes of shapes, each keyed on its own
+/// times, in an animation of `frames` frames (0 to `frames − 1`).
+#[derive(Clone, Copy, Debug)]
+pub struct DrawingKeys<'a> {
+    /// The scenes, in time order.
+    pub scenes: &'a [Scene<'a>],
+    /// Frames of the whole animation.
+    pub frames: usize,
+    /// World to pixels.
+    pub view: crate::View,
+    /// Decimals of every written coordinate; `None` for full `f64`
+    /// precision.
+    pub digits: Option<u32>,
+}
+
+impl DrawingKeys<'_> {
+    /// Checks the scenes, their tracks' shapes and times.
+    pub(crate) fn check(&self) -> Result<(), RenderError> {
+        if self.scenes.is_empty() || self.frames == 0 {
+            return Err(RenderError::NoFrames);
+        }
+        let last = self.frames - 1;
+        let bad = |key: usize, time: f64| RenderError::KeyTime { key, time, last };
+        for (i, s) in self.scenes.iter().enumerate() {
+            let after = if i == 0 {
+                s.start == 0.0
+            } else {
+                s.start > self.scenes[i - 1].start
+            };
+            if !(after && s.start <= last as f64) {
+                return Err(bad(i, s.start));
+            }
+            for t in s.tracks {
+                self.keys(t).check()?;
+                let spans = |times: &[f64]| {
+                    times.first() == Some(&0.0) && times.last() == Some(&(last as f64))
+                };
+                if !spans(t.times) {
+                    return Err(bad(0, t.times.first().copied().unwrap_or(f64::NAN)));
+                }
+                if t.paints.len() != t.paint_times.len() || !spans(t.paint_times) {
+                    return Err(bad(0, t.paint_times.first().copied().unwrap_or(f64::NAN)));
+                }
+                for (k, w) in t.paint_times.windows(2).enumerate() {
+                    if w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater) {
+                        return Err(bad(k + 1, w[1]));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The keys of one track, as the one-shape writers take them.
+    pub(crate) fn keys<'t>(&self, t: &Track<'t>) -> crate::Keys<'t> {
+        crate::Keys {
+            shapes: t.shapes,
+            times: t.times,
+            frames: self.frames,
+            view: self.view,
+            digits: self.digits,
+        }
+    }
+}
+
 impl Frame {
     /// A frame of `points` and `triangles` whose outline is the points in
     /// order (the usual case for a triangulated polygon).

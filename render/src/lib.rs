@@ -67,12 +67,12 @@ mod view;
 
 pub use easing::{Easing, frame_times};
 pub use error::RenderError;
-pub use frame::{Frame, Layer};
+pub use frame::{DrawingKeys, Frame, Layer, Paint, Scene, Track};
 pub use io::{
     Destination, NewOutputDir, OutputFile, check_output_dir, check_output_file, frame_file_name,
     is_stdout, remove_partial_outputs, resolve_output, write_atomic,
 };
-pub use lottie::{Keys, lottie, lottie_keys, write_lottie};
+pub use lottie::{Keys, lottie, lottie_drawing, lottie_keys, write_lottie};
 pub use output::{
     GIF_MAX_FPS, Loop, MAX_FPS, MIN_FPS, Output, check_fps, check_gif_fps, contact_sheet,
     contact_sheet_columns, contact_sheet_size, encode_gif, fps_in_range, write_contact_sheet,
@@ -81,8 +81,8 @@ pub use output::{
 pub use raster::{encode_png, render};
 pub use style::{Rgba, Style};
 pub use svg::{
-    BACKGROUND_ID, OUTLINE_ID, animated_svg, animated_svg_keys, svg_frame, write_animated_svg,
-    write_svg_sequence,
+    BACKGROUND_ID, OUTLINE_ID, animated_svg, animated_svg_drawing, animated_svg_keys, svg_frame,
+    write_animated_svg, write_svg_sequence,
 };
 pub use tiny_skia;
 pub use view::View;

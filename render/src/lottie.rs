@@ -247,32 +247,7 @@ pub fn lottie_keys(keys: &Keys<'_>, style: &Style, fps: f64) -> Result<String, R
 
     // The animated path.
     let mut shape = String::from("{\"ty\":\"sh\",\"nm\":\"Outline\",\"ks\":");
-    if played.len() == 1 {
-        shape.push_str("{\"a\":0,\"k\":");
-        path_value(&mut shape, &played[0]);
-        shape.push('}');
-    } else {
-        shape.push_str("{\"a\":1,\"k\":[");
-        for (k, outline) in played.iter().enumerate() {
-            if k > 0 {
-                shape.push(',');
-            }
-            shape.push_str("{\"t\":");
-            num(&mut shape, keys.times[k]);
-            shape.push_str(",\"s\":[");
-            path_value(&mut shape, outline);
-            shape.push(']');
-            if let Some(next) = played.get(k + 1) {
-                if next.len() != outline.len() {
-                    shape.push_str(",\"h\":1");
-                } else {
-                    shape.push_str(",\"i\":{\"x\":1,\"y\":1},\"o\":{\"x\":0,\"y\":0}");
-                }
-            }
-            shape.push('}');
-        }
-        shape.push_str("]}");
-    }
+    path_keys(&mut shape, &played, keys.times);
     shape.push('}');
 
     // Depth shading with two fills (module docs).
@@ -330,128 +305,188 @@ pub fn lottie_keys(keys: &Keys<'_>, style: &Style, fps: f64) -> Result<String, R
     ))
 }
 
+/// The keyframes of an outline path: `outlines[k]` at `times[k]`, linear
+/// in between; a static value for one key. Where consecutive keys have
+/// different vertex counts the earlier one holds.
+fn path_keys(out: &mut String, outlines: &[Vec<[f64; 2]>], times: &[f64]) {
+    if outlines.len() == 1 {
+        out.push_str("{\"a\":0,\"k\":");
+        path_value(out, &outlines[0]);
+        out.push('}');
+        return;
+    }
+    out.push_str("{\"a\":1,\"k\":[");
+    for (k, outline) in outlines.iter().enumerate() {
+        if k > 0 {
+            out.push(',');
+        }
+        out.push_str("{\"t\":");
+        num(out, times[k]);
+        out.push_str(",\"s\":[");
+        path_value(out, outline);
+        out.push(']');
+        if let Some(next) = outlines.get(k + 1) {
+            if next.len() != outline.len() {
+                out.push_str(",\"h\":1");
+            } else {
+                out.push_str(",\"i\":{\"x\":1,\"y\":1},\"o\":{\"x\":0,\"y\":0}");
+            }
+        }
+        out.push('}');
+    }
+    out.push_str("]}");
+}
+
+/// An animated property: `values[k]` at `times[k]`, linear in between.
+/// Keys inside a run of equal values are left out; one value left is a
+/// static property.
+fn property(times: &[f64], values: &[String]) -> String {
+    let n = values.len();
+    let kept: Vec<usize> = (0..n)
+        .filter(|&k| {
+            k == 0 || k + 1 == n || values[k] != values[k - 1] || values[k] != values[k + 1]
+        })
+        .collect();
+    if kept.len() <= 2 && values.iter().all(|v| *v == values[0]) {
+        return format!("{{\"a\":0,\"k\":{}}}", values[0]);
+    }
+    let keys: Vec<String> = kept
+        .iter()
+        .enumerate()
+        .map(|(j, &k)| {
+            let mut t = String::new();
+            num(&mut t, times[k]);
+            if j + 1 == kept.len() {
+                format!("{{\"t\":{t},\"s\":{}}}", values[k])
+            } else {
+                format!(
+                    "{{\"t\":{t},\"s\":{},\"i\":{{\"x\":1,\"y\":1}},\"o\":{{\"x\":0,\"y\":0}}}}",
+                    values[k]
+                )
+            }
+        })
+        .collect();
+    format!("{{\"a\":1,\"k\":[{}]}}", keys.join(","))
+}
+
 /// A Lottie document of a drawing's frames (each with the same layers,
-/// of the same outline lengths): one shape group per layer, top layer
-/// first as Lottie lists them, each with its animated path, its fill
-/// (with the layer's own fill rule, painting only the shape: no
-/// overlap-depth shading that could cover the shapes below), its stroke
-/// and its opacity, keyed at every played frame and interpolated
-/// linearly; then the background.
+/// of the same outline lengths): every played frame a key of every shape
+/// ([`lottie_drawing`], full precision).
 fn lottie_layers(
     frames: &[Frame],
     style: &Style,
     fps: f64,
     looping: Loop,
 ) -> Result<String, RenderError> {
+    let view = View::fit(frames, style);
+    crate::svg::with_layer_keys(frames, looping, view, |keys| {
+        lottie_drawing(keys, style, fps)
+    })
+}
+
+/// One Lottie JSON document playing a keyed drawing at `fps` frames per
+/// second, `style.width` × `style.height` pixels.
+///
+/// Every scene is one shape layer shown from its start to the next
+/// scene's (`ip`, `op`); it holds one shape group per track, top first as
+/// Lottie lists them (the reverse of the painting order), each with its
+/// outline path keyed at the track's times (linear in between, as
+/// [`lottie_keys`] writes them), its stroke, its fill with the shape's own
+/// fill rule and its opacity keyed at the paint times. A shape's fill
+/// paints the shape only: no overlap-depth shading that could cover the
+/// shapes below (drawings are painted flat, as in the PNGs). The
+/// background rectangle is a layer of its own, under every scene.
+///
+/// # Errors
+///
+/// [`RenderError::NoFrames`], [`RenderError::KeyTime`] for a scene or key
+/// time out of order or a track not spanning the whole animation,
+/// [`RenderError::BadFps`], a size error, [`RenderError::EmptyOutline`],
+/// [`RenderError::InFrame`] for a bad index or a non-finite point.
+pub fn lottie_drawing(
+    keys: &crate::DrawingKeys<'_>,
+    style: &Style,
+    fps: f64,
+) -> Result<String, RenderError> {
+    keys.check()?;
     check_fps(fps)?;
     style.check_size()?;
-    let first = &frames[0];
-    for (i, f) in frames.iter().enumerate() {
-        f.check_indices()?;
-        let same = f.layers.len() == first.layers.len()
-            && f.layers
-                .iter()
-                .zip(&first.layers)
-                .all(|(a, b)| a.outline.len() == b.outline.len());
-        if !same {
-            return Err(RenderError::OutlineMismatch {
-                frame: i,
-                expected: first.layers.len(),
-                found: f.layers.len(),
-            });
-        }
-    }
-    let view = View::fit(frames, style);
-    let played: Vec<&Frame> = looping
-        .sequence(frames.len())
-        .into_iter()
-        .map(|i| &frames[i])
-        .collect();
-    let total = played.len();
-    // An animated property from one value per played frame.
-    let animated = |values: Vec<String>| {
-        if values.len() == 1 {
-            return format!("{{\"a\":0,\"k\":{}}}", values[0]);
-        }
-        let keys: Vec<String> = values
-            .iter()
-            .enumerate()
-            .map(|(t, v)| {
-                if t + 1 == values.len() {
-                    format!("{{\"t\":{t},\"s\":{v}}}")
-                } else {
-                    format!(
-                        "{{\"t\":{t},\"s\":{v},\"i\":{{\"x\":1,\"y\":1}},\"o\":{{\"x\":0,\"y\":0}}}}"
-                    )
-                }
-            })
-            .collect();
-        format!("{{\"a\":1,\"k\":[{}]}}", keys.join(","))
-    };
-    let mut groups = Vec::new();
-    for k in (0..first.layers.len()).rev() {
-        let mut paths = Vec::with_capacity(total);
-        for f in &played {
-            let layer = &f.layers[k];
-            let mut pts = Vec::with_capacity(layer.outline.len());
-            for &i in &layer.outline {
-                let q = view.to_pixel(f.points[i as usize]);
-                if !(q[0].is_finite() && q[1].is_finite()) {
-                    return Err(RenderError::NonFinitePoint { index: i });
-                }
-                pts.push(q);
+    let total = keys.frames;
+    let scale = keys.view.scale();
+    let colour = |c: Option<Rgba>| color(c.unwrap_or(style.background));
+    let layer_ks = r#"{"o":{"a":0,"k":100},"r":{"a":0,"k":0},"p":{"a":0,"k":[0,0,0]},"a":{"a":0,"k":[0,0,0]},"s":{"a":0,"k":[100,100,100]}}"#;
+    let mut layers = Vec::with_capacity(keys.scenes.len() + 1);
+    for (si, scene) in keys.scenes.iter().enumerate() {
+        let mut groups = Vec::with_capacity(scene.tracks.len());
+        for (k, track) in scene.tracks.iter().enumerate().rev() {
+            let one = keys.keys(track);
+            let mut outlines = Vec::with_capacity(track.shapes.len());
+            for i in 0..track.shapes.len() {
+                outlines.push(one.pixel_outline(i)?);
             }
-            let mut v = String::from("[");
-            path_value(&mut v, &pts);
-            v.push(']');
-            paths.push(v);
-        }
-        let colour = |c: Option<Rgba>| {
-            let c = c.unwrap_or(style.background);
-            color(c)
-        };
-        let l0 = &first.layers[k];
-        let mut items = vec![format!(
-            "{{\"ty\":\"sh\",\"nm\":\"Outline\",\"ks\":{}}}",
-            animated(paths)
-        )];
-        if l0.stroke.is_some() {
+            let mut sh = String::from("{\"ty\":\"sh\",\"nm\":\"Outline\",\"ks\":");
+            path_keys(&mut sh, &outlines, track.times);
+            sh.push('}');
+            let mut items = vec![sh];
+            let t = track.paint_times;
+            let values = |f: &dyn Fn(&crate::Paint) -> String| -> Vec<String> {
+                track.paints.iter().map(f).collect()
+            };
+            if track.paints.iter().any(|p| p.stroke.is_some()) {
+                items.push(format!(
+                    "{{\"ty\":\"st\",\"nm\":\"Stroke\",\"c\":{},\"o\":{{\"a\":0,\"k\":100}},\"w\":{},\"lc\":2,\"lj\":2,\"ml\":4}}",
+                    property(t, &values(&|p| colour(p.stroke))),
+                    property(
+                        t,
+                        &values(&|p| {
+                            let w = if p.stroke.is_some() { p.stroke_width * scale } else { 0.0 };
+                            let mut s = String::from("[");
+                            num(&mut s, (w * 1000.0).round() / 1000.0);
+                            s.push(']');
+                            s
+                        })
+                    ),
+                ));
+            }
+            if track.paints.iter().any(|p| p.fill.is_some()) {
+                items.push(format!(
+                    "{{\"ty\":\"fl\",\"nm\":\"Fill\",\"c\":{},\"o\":{{\"a\":0,\"k\":100}},\"r\":{}}}",
+                    property(t, &values(&|p| colour(p.fill))),
+                    if track.evenodd { 2 } else { 1 },
+                ));
+            }
+            let opacity = property(t, &values(&|p| format!("[{}]", percent(p.opacity))));
             items.push(format!(
-                "{{\"ty\":\"st\",\"nm\":\"Stroke\",\"c\":{},\"o\":{{\"a\":0,\"k\":100}},\"w\":{},\"lc\":2,\"lj\":2,\"ml\":4}}",
-                animated(played.iter().map(|f| colour(f.layers[k].stroke)).collect()),
-                animated(
-                    played
-                        .iter()
-                        .map(|f| format!("[{}]", f.layers[k].stroke_width * view.scale()))
-                        .collect()
-                ),
+                "{{\"ty\":\"tr\",\"nm\":\"Transform\",\"p\":{{\"a\":0,\"k\":[0,0]}},\"a\":{{\"a\":0,\"k\":[0,0]}},\"s\":{{\"a\":0,\"k\":[100,100]}},\"r\":{{\"a\":0,\"k\":0}},\"o\":{opacity},\"sk\":{{\"a\":0,\"k\":0}},\"sa\":{{\"a\":0,\"k\":0}}}}"
+            ));
+            groups.push(format!(
+                "{{\"ty\":\"gr\",\"nm\":\"Shape {}\",\"it\":[{}]}}",
+                k + 1,
+                items.join(",")
             ));
         }
-        if l0.fill.is_some() {
-            items.push(format!(
-                "{{\"ty\":\"fl\",\"nm\":\"Fill\",\"c\":{},\"o\":{{\"a\":0,\"k\":100}},\"r\":{}}}",
-                animated(played.iter().map(|f| colour(f.layers[k].fill)).collect()),
-                if l0.evenodd { 2 } else { 1 },
-            ));
-        }
-        let opacity = animated(
-            played
-                .iter()
-                .map(|f| format!("[{}]", percent(f.layers[k].opacity)))
-                .collect(),
+        let mut ip = String::new();
+        num(&mut ip, scene.start);
+        let mut op = String::new();
+        num(
+            &mut op,
+            keys.scenes.get(si + 1).map_or(total as f64, |n| n.start),
         );
-        items.push(format!(
-            "{{\"ty\":\"tr\",\"nm\":\"Transform\",\"p\":{{\"a\":0,\"k\":[0,0]}},\"a\":{{\"a\":0,\"k\":[0,0]}},\"s\":{{\"a\":0,\"k\":[100,100]}},\"r\":{{\"a\":0,\"k\":0}},\"o\":{opacity},\"sk\":{{\"a\":0,\"k\":0}},\"sa\":{{\"a\":0,\"k\":0}}}}"
-        ));
-        groups.push(format!(
-            "{{\"ty\":\"gr\",\"nm\":\"Shape {}\",\"it\":[{}]}}",
-            k + 1,
-            items.join(",")
+        let name = if keys.scenes.len() == 1 {
+            "immerse drawing".to_string()
+        } else {
+            format!("immerse drawing, segment {}", si + 1)
+        };
+        layers.push(format!(
+            "{{\"ddd\":0,\"ind\":{},\"ty\":4,\"nm\":\"{name}\",\"sr\":1,\"ks\":{layer_ks},\"ao\":0,\"ip\":{ip},\"op\":{op},\"st\":0,\"bm\":0,\"shapes\":[{}]}}",
+            si + 1,
+            groups.join(",")
         ));
     }
     let (w, h) = (style.width, style.height);
-    groups.push(format!(
-        "{{\"ty\":\"gr\",\"nm\":\"Background\",\"it\":[{{\"ty\":\"rc\",\"nm\":\"Rectangle\",\"d\":1,\"p\":{{\"a\":0,\"k\":[{},{}]}},\"s\":{{\"a\":0,\"k\":[{w},{h}]}},\"r\":{{\"a\":0,\"k\":0}}}},{},{}]}}",
+    layers.push(format!(
+        "{{\"ddd\":0,\"ind\":{},\"ty\":4,\"nm\":\"Background\",\"sr\":1,\"ks\":{layer_ks},\"ao\":0,\"ip\":0,\"op\":{total},\"st\":0,\"bm\":0,\"shapes\":[{{\"ty\":\"gr\",\"nm\":\"Background\",\"it\":[{{\"ty\":\"rc\",\"nm\":\"Rectangle\",\"d\":1,\"p\":{{\"a\":0,\"k\":[{},{}]}},\"s\":{{\"a\":0,\"k\":[{w},{h}]}},\"r\":{{\"a\":0,\"k\":0}}}},{},{}]}}]}}",
+        keys.scenes.len() + 1,
         f64::from(w) / 2.0,
         f64::from(h) / 2.0,
         fill("Background", style.background, style.background.opacity(), 1),
@@ -459,10 +494,9 @@ fn lottie_layers(
     ));
     let mut fr = String::new();
     num(&mut fr, fps);
-    let layer_ks = r#"{"o":{"a":0,"k":100},"r":{"a":0,"k":0},"p":{"a":0,"k":[0,0,0]},"a":{"a":0,"k":[0,0,0]},"s":{"a":0,"k":[100,100,100]}}"#;
     Ok(format!(
-        "{{\"v\":\"5.7.4\",\"nm\":\"immerse\",\"fr\":{fr},\"ip\":0,\"op\":{total},\"w\":{w},\"h\":{h},\"ddd\":0,\"assets\":[],\"layers\":[{{\"ddd\":0,\"ind\":1,\"ty\":4,\"nm\":\"immerse drawing\",\"sr\":1,\"ks\":{layer_ks},\"ao\":0,\"ip\":0,\"op\":{total},\"st\":0,\"bm\":0,\"shapes\":[{}]}}],\"markers\":[]}}\n",
-        groups.join(",")
+        "{{\"v\":\"5.7.4\",\"nm\":\"immerse\",\"fr\":{fr},\"ip\":0,\"op\":{total},\"w\":{w},\"h\":{h},\"ddd\":0,\"assets\":[],\"layers\":[{}],\"markers\":[]}}\n",
+        layers.join(",")
     ))
 }
 

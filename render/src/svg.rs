@@ -448,20 +448,31 @@ pub fn animated_svg_keys(
 }
 
 /// An animated SVG of a drawing's frames (each with the same layers, of
-/// the same outline lengths): one path per layer, bottom first, whose
-/// `d`, fill, stroke, stroke width and opacity are animated linearly
-/// through every played frame.
+/// the same outline lengths): every played frame a key of every shape
+/// ([`animated_svg_drawing`], full precision).
 fn animated_layers(
     frames: &[Frame],
     style: &Style,
     fps: f64,
     looping: Loop,
 ) -> Result<String, RenderError> {
-    check_fps(fps)?;
-    style.check_size()?;
+    let view = View::fit(frames, style);
+    with_layer_keys(frames, looping, view, |keys| {
+        animated_svg_drawing(keys, style, fps, looping)
+    })
+}
+
+/// Calls `write` with the drawing of `frames`' layers as one scene whose
+/// every played frame is a key of every shape.
+pub(crate) fn with_layer_keys(
+    frames: &[Frame],
+    looping: Loop,
+    view: View,
+    write: impl FnOnce(&crate::DrawingKeys<'_>) -> Result<String, RenderError>,
+) -> Result<String, RenderError> {
     let first = &frames[0];
     for (i, f) in frames.iter().enumerate() {
-        f.check_indices()?;
+        f.check_indices().map_err(|e| e.in_frame(i))?;
         if f.layers.len() != first.layers.len() {
             return Err(RenderError::OutlineMismatch {
                 frame: i,
@@ -469,97 +480,200 @@ fn animated_layers(
                 found: f.layers.len(),
             });
         }
-        for (a, b) in f.layers.iter().zip(&first.layers) {
-            if a.outline.len() != b.outline.len() {
-                return Err(RenderError::OutlineMismatch {
-                    frame: i,
-                    expected: b.outline.len(),
-                    found: a.outline.len(),
-                });
-            }
-        }
     }
-    let view = View::fit(frames, style);
     let played: Vec<&Frame> = looping
         .sequence(frames.len())
         .into_iter()
         .map(|i| &frames[i])
         .collect();
-    let dur = (played.len().max(2) - 1) as f64 / fps;
-    let key_times: Vec<String> = (0..played.len())
-        .map(|i| format!("{}", i as f64 / (played.len().max(2) - 1) as f64))
+    let times: Vec<f64> = (0..played.len()).map(|i| i as f64).collect();
+    let shapes: Vec<Vec<Frame>> = (0..first.layers.len())
+        .map(|k| {
+            played
+                .iter()
+                .map(|f| Frame {
+                    points: f.points.clone(),
+                    outline: f.layers[k].outline.clone(),
+                    ..Frame::default()
+                })
+                .collect()
+        })
         .collect();
-    let key_times = if played.len() == 1 {
-        "0;1".to_string()
-    } else {
-        key_times.join(";")
-    };
+    let paints: Vec<Vec<crate::Paint>> = (0..first.layers.len())
+        .map(|k| played.iter().map(|f| f.layers[k].paint()).collect())
+        .collect();
+    let tracks: Vec<crate::Track<'_>> = (0..first.layers.len())
+        .map(|k| crate::Track {
+            shapes: &shapes[k],
+            times: &times,
+            paints: &paints[k],
+            paint_times: &times,
+            evenodd: first.layers[k].evenodd,
+        })
+        .collect();
+    let scenes = [crate::Scene {
+        start: 0.0,
+        tracks: &tracks,
+    }];
+    write(&crate::DrawingKeys {
+        scenes: &scenes,
+        frames: played.len(),
+        view,
+        digits: None,
+    })
+}
+
+/// `values[k]` at `times[k]` over an animation whose last frame is
+/// `last`, as SMIL's `keyTimes` and `values`; keys inside a run of equal
+/// values are left out.
+fn smil_values(times: &[f64], values: &[String], last: f64) -> (String, String) {
+    let n = values.len();
+    if n == 1 {
+        return ("0;1".to_string(), format!("{0};{0}", values[0]));
+    }
+    let kept: Vec<usize> = (0..n)
+        .filter(|&k| {
+            k == 0 || k + 1 == n || values[k] != values[k - 1] || values[k] != values[k + 1]
+        })
+        .collect();
+    let key_times: Vec<String> = kept
+        .iter()
+        .map(|&k| {
+            // The ends exactly 0 and 1, as SMIL asks.
+            let x = if k + 1 == n { 1.0 } else { times[k] / last };
+            format!("{x}")
+        })
+        .collect();
+    let vals: Vec<&str> = kept.iter().map(|&k| values[k].as_str()).collect();
+    (key_times.join(";"), vals.join(";"))
+}
+
+/// One SVG document playing a keyed drawing: every scene a group shown
+/// from its start to the next scene's, holding one path per track,
+/// bottom first, whose `d` is animated through exactly the track's keys
+/// (`keyTimes` their times over the last frame, `calcMode="linear"`,
+/// pixels of `keys.view` with `keys.digits` decimals, as
+/// [`animated_svg_keys`] writes them), and whose fill, stroke, stroke
+/// width and opacity are animated through its paints. `(frames - 1) / fps`
+/// seconds long, repeated unless `looping` is [`Loop::Once`].
+///
+/// # Errors
+///
+/// As [`crate::lottie_drawing`], and [`RenderError::OutlineMismatch`]
+/// unless every key of a track has an outline of the same length.
+pub fn animated_svg_drawing(
+    keys: &crate::DrawingKeys<'_>,
+    style: &Style,
+    fps: f64,
+    looping: Loop,
+) -> Result<String, RenderError> {
+    keys.check()?;
+    check_fps(fps)?;
+    style.check_size()?;
+    let last = (keys.frames.max(2) - 1) as f64;
+    let dur = last / fps;
     let repeat = if looping == Loop::Once {
         "1"
     } else {
         "indefinite"
     };
-    let values = |v: Vec<String>| {
-        if v.len() == 1 {
-            format!("{0};{0}", v[0])
-        } else {
-            v.join(";")
-        }
-    };
     let colour = |c: Option<Rgba>| c.map_or_else(|| "none".to_string(), Rgba::hex_rgb);
+    let scale = keys.view.scale();
     let mut out = String::new();
     header(&mut out, style);
-    for k in 0..first.layers.len() {
-        let mut ds = Vec::with_capacity(played.len());
-        for f in &played {
-            let pts = pixel_points(f, &view);
-            ds.push(path_data(&f.layers[k].outline, &pts, true));
-        }
-        let layer = |f: &&Frame| f.layers[k].clone();
-        let l0 = &first.layers[k];
-        let _ = writeln!(
-            out,
-            "<path d=\"{}\" fill=\"{}\" fill-rule=\"{}\" stroke=\"{}\" stroke-linejoin=\"round\">",
-            ds[0],
-            colour(l0.fill),
-            if l0.evenodd { "evenodd" } else { "nonzero" },
-            colour(l0.stroke),
-        );
-        let animate = |out: &mut String, attr: &str, v: Vec<String>| {
+    for (si, scene) in keys.scenes.iter().enumerate() {
+        if keys.scenes.len() == 1 {
+            out.push_str("<g>\n");
+        } else {
+            // Shown from its start to the next scene's.
+            let end = keys.scenes.get(si + 1).map(|n| n.start / last);
+            let start = scene.start / last;
+            let (times, values) = match (si, end) {
+                (0, Some(e)) => (format!("0;{e}"), "visible;hidden"),
+                (_, Some(e)) => (format!("0;{start};{e}"), "hidden;visible;hidden"),
+                (_, None) => (format!("0;{start}"), "hidden;visible"),
+            };
             let _ = writeln!(
                 out,
-                "<animate attributeName=\"{attr}\" dur=\"{dur}s\" repeatCount=\"{repeat}\" fill=\"freeze\" calcMode=\"linear\" keyTimes=\"{key_times}\" values=\"{}\"/>",
-                values(v)
+                "<g visibility=\"{}\">\n<animate attributeName=\"visibility\" dur=\"{dur}s\" repeatCount=\"{repeat}\" fill=\"freeze\" calcMode=\"discrete\" keyTimes=\"{times}\" values=\"{values}\"/>",
+                if si == 0 { "visible" } else { "hidden" }
             );
-        };
-        animate(&mut out, "d", ds);
-        animate(
-            &mut out,
-            "fill",
-            played.iter().map(|f| colour(layer(f).fill)).collect(),
-        );
-        animate(
-            &mut out,
-            "stroke",
-            played.iter().map(|f| colour(layer(f).stroke)).collect(),
-        );
-        animate(
-            &mut out,
-            "stroke-width",
-            played
+        }
+        for track in scene.tracks {
+            let one = keys.keys(track);
+            let expected = track.shapes[0].outline.len();
+            let mut ds = Vec::with_capacity(track.shapes.len());
+            for (i, f) in track.shapes.iter().enumerate() {
+                if f.outline.len() != expected {
+                    return Err(RenderError::OutlineMismatch {
+                        frame: i,
+                        expected,
+                        found: f.outline.len(),
+                    });
+                }
+                ds.push(outline_data(&one.pixel_outline(i)?));
+            }
+            let p0 = &track.paints[0];
+            let _ = writeln!(
+                out,
+                "<path d=\"{}\" fill=\"{}\" fill-rule=\"{}\" stroke=\"{}\" stroke-linejoin=\"round\">",
+                ds[0],
+                colour(p0.fill),
+                if track.evenodd { "evenodd" } else { "nonzero" },
+                colour(p0.stroke),
+            );
+            let animate = |out: &mut String, attr: &str, times: &[f64], v: &[String]| {
+                let (key_times, values) = smil_values(times, v, last);
+                let _ = writeln!(
+                    out,
+                    "<animate attributeName=\"{attr}\" dur=\"{dur}s\" repeatCount=\"{repeat}\" fill=\"freeze\" calcMode=\"linear\" keyTimes=\"{key_times}\" values=\"{values}\"/>",
+                );
+            };
+            // Every key of the outline is written, equal or not: the
+            // certified keys exactly.
+            let key_times: Vec<String> = track
+                .times
                 .iter()
-                .map(|f| format!("{:.3}", layer(f).stroke_width * view.scale()))
-                .collect(),
-        );
-        animate(
-            &mut out,
-            "opacity",
-            played
-                .iter()
-                .map(|f| format!("{:.3}", layer(f).opacity.clamp(0.0, 1.0)))
-                .collect(),
-        );
-        out.push_str("</path>\n");
+                .enumerate()
+                .map(|(i, &t)| {
+                    let x = if i + 1 == track.times.len() {
+                        1.0
+                    } else {
+                        t / last
+                    };
+                    format!("{x}")
+                })
+                .collect();
+            let (key_times, values) = if ds.len() == 1 {
+                ("0;1".to_string(), format!("{0};{0}", ds[0]))
+            } else {
+                (key_times.join(";"), ds.join(";"))
+            };
+            let _ = writeln!(
+                out,
+                "<animate attributeName=\"d\" dur=\"{dur}s\" repeatCount=\"{repeat}\" fill=\"freeze\" calcMode=\"linear\" keyTimes=\"{key_times}\" values=\"{values}\"/>",
+            );
+            let t = track.paint_times;
+            let paints = |f: &dyn Fn(&crate::Paint) -> String| -> Vec<String> {
+                track.paints.iter().map(f).collect()
+            };
+            animate(&mut out, "fill", t, &paints(&|p| colour(p.fill)));
+            animate(&mut out, "stroke", t, &paints(&|p| colour(p.stroke)));
+            animate(
+                &mut out,
+                "stroke-width",
+                t,
+                &paints(&|p| format!("{:.3}", p.stroke_width * scale)),
+            );
+            animate(
+                &mut out,
+                "opacity",
+                t,
+                &paints(&|p| format!("{:.3}", p.opacity.clamp(0.0, 1.0))),
+            );
+            out.push_str("</path>\n");
+        }
+        out.push_str("</g>\n");
     }
     out.push_str("</svg>\n");
     Ok(out)

@@ -611,6 +611,59 @@ pub(crate) fn elements(bytes: &[u8], label: &str) -> Result<Vec<Element>, CurveE
     Ok(out)
 }
 
+/// The visible path elements of each top-level group of a drawing (as
+/// [`SvgShapes::Groups`] finds the groups: a group alone at its level is
+/// looked into), each with what names it (`group 'ID'` or `group K`), in
+/// document order; groups without a path element are left out.
+pub(crate) fn group_elements(
+    bytes: &[u8],
+    label: &str,
+) -> Result<Vec<(String, Vec<Element>)>, CurveError> {
+    fn walk(group: &usvg::Group, opacity: f64, out: &mut Vec<Element>) {
+        for node in group.children() {
+            match node {
+                usvg::Node::Group(g) => walk(g, opacity * f64::from(g.opacity().get()), out),
+                usvg::Node::Path(path) if path.id() != BACKGROUND_ID && path.is_visible() => {
+                    let subpaths = subpaths(path);
+                    if !subpaths.is_empty() {
+                        out.push(Element {
+                            path: (**path).clone(),
+                            group_opacity: opacity,
+                            subpaths,
+                        });
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+    let tree = load(bytes, label)?;
+    let mut level = tree.root();
+    let mut opacity = 1.0;
+    while let [usvg::Node::Group(g)] = level.children() {
+        level = g;
+        opacity *= f64::from(g.opacity().get());
+    }
+    let mut out = Vec::new();
+    for (k, node) in level.children().iter().enumerate() {
+        let usvg::Node::Group(g) = node else {
+            continue;
+        };
+        let mut elements = Vec::new();
+        walk(g, opacity * f64::from(g.opacity().get()), &mut elements);
+        if elements.is_empty() {
+            continue;
+        }
+        let name = if g.id().is_empty() {
+            format!("group {}", k + 1)
+        } else {
+            format!("group '{}'", one_line(g.id()))
+        };
+        out.push((name, elements));
+    }
+    Ok(out)
+}
+
 /// What names closed subpath `sub` (counting from 0) of element number
 /// `element` (counting from 0) with id `id` that has `count` closed
 /// subpaths: `path 'ID'` or `path K`, followed by `subpath J` when the

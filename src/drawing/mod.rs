@@ -31,7 +31,7 @@ mod tween;
 pub use matching::{MatchMode, Matching, UNMATCHED_COST, match_shapes};
 pub use style::{Color, FillRule, Style};
 pub use tween::{
-    DrawingFrame, DrawingTween, DrawingTweenError, FrameShape, GROWN_SCALE, ShapeRole,
+    DrawingFrame, DrawingTween, DrawingTweenError, FrameShape, GROWN_SCALE, ShapeKeys, ShapeRole,
 };
 
 use crate::curve::{Curve, CurveError, Format, MAX_FILE_BYTES};
@@ -216,6 +216,34 @@ impl Drawing {
             .into());
         }
         Ok(drawing)
+    }
+
+    /// Every top-level group of an SVG file as a drawing (a sequence of
+    /// drawings in one file: each group, or Inkscape layer, one key),
+    /// each named as its group (`group 'ID'`, `group K`). Every closed
+    /// subpath of a group is a shape of its drawing, as
+    /// [`Drawing::read_path`] reads a whole file; holes are refused.
+    ///
+    /// # Errors
+    ///
+    /// As [`Drawing::read_path`], naming the group.
+    pub fn groups_from_path(path: impl AsRef<Path>) -> Result<Vec<Drawing>, DrawingError> {
+        let path = path.as_ref();
+        let label = path.display().to_string();
+        let bytes = crate::curve::read_file(path, &label)?;
+        let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes);
+        let drawings = svg::read_groups(bytes, &label)?;
+        for d in &drawings {
+            if d.shapes.len() > MAX_SHAPES {
+                return Err(CurveError::TooLarge {
+                    path: format!("{label} ({})", d.name),
+                    what: format!("{} shapes", d.shapes.len()),
+                    limit: format!("{MAX_SHAPES} shapes"),
+                }
+                .into());
+            }
+        }
+        Ok(drawings)
     }
 
     /// The drawing of one curve, painted with `style`.

@@ -3,11 +3,24 @@
 
 use super::style::{Color, FillRule, Style};
 use super::{Drawing, DrawingError, Shape, holes};
-use crate::curve::svg::{Element, elements, list_names, part_name};
+use crate::curve::svg::{Element, elements, group_elements, list_names, part_name};
 use crate::curve::{Curve, CurveError};
 
 pub(super) fn read(bytes: &[u8], label: &str, name: &str) -> Result<Drawing, DrawingError> {
     let elements = elements(bytes, label)?;
+    from_elements(&elements, label, name)
+}
+
+/// Every top-level group as a drawing of its own, named as the group
+/// (`group 'ID'` or `group K`); errors name the file and the group.
+pub(super) fn read_groups(bytes: &[u8], label: &str) -> Result<Vec<Drawing>, DrawingError> {
+    group_elements(bytes, label)?
+        .into_iter()
+        .map(|(name, elements)| from_elements(&elements, &format!("{label} ({name})"), &name))
+        .collect()
+}
+
+fn from_elements(elements: &[Element], label: &str, name: &str) -> Result<Drawing, DrawingError> {
     let mut shapes = Vec::new();
     let mut notices = Vec::new();
     let mut left_out = Vec::new();

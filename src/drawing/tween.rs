@@ -10,7 +10,7 @@ use crate::frames::Frame;
 use crate::geom::Point;
 use crate::geom::polygon::area_centroid;
 use crate::immersion::{self, NotSelfOverlapping, check_triangles};
-use crate::morph::{CurveMorphError, CurveMorphOptions, MorphError, Tween};
+use crate::morph::{CurveMorphError, CurveMorphOptions, Keyframe, MorphError, Tween};
 use rayon::prelude::*;
 
 /// The scale of the copy an unmatched shape grows from or shrinks to: a
@@ -102,6 +102,40 @@ pub enum DrawingTweenError {
         /// What the checker found.
         defect: String,
     },
+}
+
+/// The certified keys of one shape of a drawing morph
+/// ([`DrawingTween::shape_keys`]).
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct ShapeKeys {
+    /// The shape's id (as [`FrameShape::id`]).
+    pub id: String,
+    /// What names it in messages (`shape K (…) → shape J (…)`).
+    #[serde(skip)]
+    pub label: String,
+    /// What the shape does.
+    pub role: ShapeRole,
+    /// Its paint at t = 0.
+    #[serde(skip)]
+    pub from: Style,
+    /// Its paint at t = 1.
+    #[serde(skip)]
+    pub to: Style,
+    /// How many keys.
+    pub key_count: usize,
+    /// Its keys, `t` in [0, 1] on the morph's axis: linear interpolation
+    /// between consecutive keys gives the shape's frames, and every
+    /// segment between two keys is certified an immersed disk (a matched
+    /// shape's [`Tween::keyframes`]; the two ends of a growing or
+    /// shrinking shape, whose motion is a scaling).
+    pub keyframes: Vec<Keyframe>,
+}
+
+impl ShapeKeys {
+    /// The shape's paint at `t` ([`Style::lerp`]).
+    pub fn style_at(&self, t: f64) -> Style {
+        self.from.lerp(&self.to, t)
+    }
 }
 
 /// How one shape of the morph moves.
@@ -258,6 +292,93 @@ impl DrawingTween {
     /// Number of shapes in every frame.
     pub fn shape_count(&self) -> usize {
         self.parts.len()
+    }
+
+    /// Every shape's certified keys, in painting order (as
+    /// [`DrawingFrame::shapes`]).
+    ///
+    /// # Errors
+    ///
+    /// [`DrawingTweenError::Scaled`] when a growing or shrinking shape's
+    /// segment is not certified (a bug).
+    pub fn shape_keys(&self) -> Result<Vec<ShapeKeys>, DrawingTweenError> {
+        self.parts
+            .par_iter()
+            .map(|part| {
+                let keyframes = match &part.motion {
+                    Motion::Tween(tween) => tween.keyframes(),
+                    Motion::Scale { triangles, .. } => {
+                        let ends = [part.frame(0.0)?, part.frame(1.0)?];
+                        let certified = crate::certify::certify_segment(
+                            &ends[0].points,
+                            &ends[1].points,
+                            triangles,
+                            crate::certify::Player::Exact,
+                        )
+                        .is_ok_and(|r| r.is_certified());
+                        if !certified {
+                            return Err(DrawingTweenError::Scaled {
+                                shape: part.label.clone(),
+                                scale: GROWN_SCALE,
+                                defect: "the scaling between its two keys is not certified"
+                                    .to_string(),
+                            });
+                        }
+                        ends.into_iter()
+                            .map(|f| Keyframe {
+                                t: f.t,
+                                points: f.points,
+                                triangles: f.triangles,
+                            })
+                            .collect()
+                    }
+                };
+                Ok(ShapeKeys {
+                    id: part.id.clone(),
+                    label: part.label.clone(),
+                    role: part.role,
+                    from: part.from,
+                    to: part.to,
+                    key_count: keyframes.len(),
+                    keyframes,
+                })
+            })
+            .collect()
+    }
+
+    /// True when every matched shape's tween is certified between its
+    /// keys ([`Tween::is_certified`]); growing and shrinking shapes are
+    /// certified by [`DrawingTween::shape_keys`].
+    pub fn is_certified(&self) -> bool {
+        self.parts.iter().all(|p| match &p.motion {
+            Motion::Tween(t) => t.is_certified(),
+            Motion::Scale { .. } => true,
+        })
+    }
+
+    /// The pace of the morph: the largest of its shapes'
+    /// ([`Tween::path_length`]; for a growing or shrinking shape, the
+    /// farthest any vertex travels).
+    pub fn path_length(&self) -> f64 {
+        self.parts
+            .iter()
+            .map(|p| match &p.motion {
+                Motion::Tween(t) => t.path_length(),
+                Motion::Scale {
+                    points,
+                    centre,
+                    from,
+                    to,
+                    ..
+                } => {
+                    let r = points
+                        .iter()
+                        .map(|&q| (q - *centre).length())
+                        .fold(0.0, f64::max);
+                    r * (to - from).abs()
+                }
+            })
+            .fold(0.0, f64::max)
     }
 
     /// The frame at `t` in [0, 1]: every shape's frame at t (a tween's, or

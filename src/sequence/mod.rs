@@ -27,7 +27,9 @@ mod align;
 pub mod timing;
 
 pub use align::HINT_SNAP;
-pub use timing::{Ease, KeySpeed, KeyTiming, Sample, Schedule, Timing, key_speeds};
+pub use timing::{
+    Ease, KeySpeed, KeyTiming, Sample, Schedule, Timing, key_speeds, schedule_lengths,
+};
 
 use crate::correspond::shift_triangles;
 use crate::frames::{Fallback, Frame, Morph};

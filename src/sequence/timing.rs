@@ -240,6 +240,24 @@ fn frames_of(seconds: f64, fps: f64) -> usize {
 /// Places the frames for segments of pace `lengths`, whose largest vertex
 /// moves per unit of pace at their start and end are `rates` (1 where
 /// unknown).
+/// Places the frames of a sequence of `lengths.len()` segments whose
+/// travels ([`crate::morph::Tween::path_length`] or the like) are
+/// `lengths`, with the speed at a key taken as even on both sides (rate 1);
+/// `names` name the keys in errors. What [`super::Sequence::schedule`]
+/// does for curves, for sequences made of other motions (drawings).
+///
+/// # Errors
+///
+/// [`SequenceError::Timing`] naming the key or setting that cannot be
+/// met.
+pub fn schedule_lengths(
+    lengths: &[f64],
+    timing: &Timing,
+    names: &[String],
+) -> Result<Schedule, SequenceError> {
+    schedule(lengths, &[], timing, names)
+}
+
 pub(super) fn schedule(
     lengths: &[f64],
     rates: &[(f64, f64)],

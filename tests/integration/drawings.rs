@@ -334,8 +334,16 @@ fn commands_never_read_one_part_of_a_drawing() {
             "a.gif",
         ],
     );
+    // animate reads it as a drawing key, whose every shape must be
+    // self-overlapping.
     assert_eq!(out.status.code(), Some(2));
-    assert!(stderr(&out).contains(refusal), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains(
+            "two.svg: shape 2 (path 'eight') is not self-overlapping (turning number is 0, not 1)"
+        ),
+        "{}",
+        stderr(&out)
+    );
     // A hole is bad input for check too.
     std::fs::write(
         d.path().join("ring.svg"),
@@ -446,7 +454,7 @@ fn drawing_tween_frames_are_immersions_with_growing_and_fading_shapes() {
 
 /// `immerse morph` on drawings: the matching in the summary and the JSON,
 /// every shape of every JSON frame an immersed disk, styles carried into
-/// the SVG frames; animated SVG and Lottie refused for now.
+/// the SVG frames, the animated SVG and the Lottie file.
 #[test]
 fn morph_drawings_reports_matching_and_draws_every_shape_with_its_style() {
     use crate::util::{immerse_in, stderr};
@@ -540,10 +548,11 @@ fn morph_drawings_reports_matching_and_draws_every_shape_with_its_style() {
     );
     assert!(
         svg.contains("values=\"1.000;0.667;0.333;0.000\""),
-        "the horn fades out"
+        "the horn fades out: {svg}"
     );
-    // Lottie: one shape group per shape (top first) with its own fill and
-    // stroke, then the background; the body's fill runs to the target's.
+    // Lottie: one layer of the shapes, one shape group per shape (top
+    // first) with its own fill and stroke, then the background layer; the
+    // body's fill runs to the target's.
     let out = immerse_in(
         d.path(),
         &[
@@ -554,17 +563,11 @@ fn morph_drawings_reports_matching_and_draws_every_shape_with_its_style() {
     let lottie: serde_json::Value =
         serde_json::from_slice(&std::fs::read(d.path().join("a.json")).unwrap()).unwrap();
     let groups = lottie["layers"][0]["shapes"].as_array().unwrap();
+    assert_eq!(lottie["layers"][1]["nm"], "Background");
     let names: Vec<&str> = groups.iter().map(|g| g["nm"].as_str().unwrap()).collect();
     assert_eq!(
         names,
-        [
-            "Shape 5",
-            "Shape 4",
-            "Shape 3",
-            "Shape 2",
-            "Shape 1",
-            "Background"
-        ]
+        ["Shape 5", "Shape 4", "Shape 3", "Shape 2", "Shape 1",]
     );
     let body = groups[4]["it"].as_array().unwrap();
     let fill = body.iter().find(|i| i["ty"] == "fl").unwrap();
@@ -638,4 +641,351 @@ proptest::proptest! {
         prop_assert_eq!(auto.pairs.len(), count);
         prop_assert!(auto.vanishing.is_empty() && auto.appearing.is_empty());
     }
+}
+
+/// An independent reading of a written animation: every animated outline
+/// as its keys (y up, counter-clockwise), in the file's order.
+fn outlines_of(text: &str) -> Vec<Vec<Vec<immerse::Point>>> {
+    use immerse::Point;
+    let ccw = |mut keys: Vec<Vec<Point>>| {
+        let area: f64 = {
+            let p = &keys[0];
+            (0..p.len())
+                .map(|i| {
+                    let (a, b) = (p[i], p[(i + 1) % p.len()]);
+                    a.x * b.y - b.x * a.y
+                })
+                .sum()
+        };
+        if area < 0.0 {
+            for k in &mut keys {
+                k.reverse();
+            }
+        }
+        keys
+    };
+    let mut out = Vec::new();
+    if text.trim_start().starts_with('{') {
+        let doc: serde_json::Value = serde_json::from_str(text).unwrap();
+        for layer in doc["layers"].as_array().unwrap() {
+            for group in layer["shapes"].as_array().unwrap() {
+                for item in group["it"].as_array().unwrap() {
+                    if item["ty"] != "sh" || item["ks"]["a"] != 1 {
+                        continue;
+                    }
+                    let keys: Vec<Vec<Point>> = item["ks"]["k"]
+                        .as_array()
+                        .unwrap()
+                        .iter()
+                        .map(|k| {
+                            k["s"][0]["v"]
+                                .as_array()
+                                .unwrap()
+                                .iter()
+                                .map(|p| {
+                                    Point::new(p[0].as_f64().unwrap(), -p[1].as_f64().unwrap())
+                                })
+                                .collect()
+                        })
+                        .collect();
+                    out.push(ccw(keys));
+                }
+            }
+        }
+    } else {
+        for anim in text.split("<animate attributeName=\"d\"").skip(1) {
+            let values = anim.split("values=\"").nth(1).unwrap();
+            let values = &values[..values.find('"').unwrap()];
+            let keys: Vec<Vec<Point>> = values
+                .split(';')
+                .map(|d| {
+                    d.trim_end_matches('Z')
+                        .split(['M', 'L'])
+                        .filter(|s| !s.is_empty())
+                        .map(|xy| {
+                            let mut it = xy.split(' ').map(|v| v.parse::<f64>().unwrap());
+                            let (x, y) = (it.next().unwrap(), it.next().unwrap());
+                            Point::new(x, -y)
+                        })
+                        .collect()
+                })
+                .collect();
+            out.push(ccw(keys));
+        }
+    }
+    out
+}
+
+/// Certifies every segment of every outline for `player`: the start
+/// key's triangulation, re-triangulating where it stops holding.
+fn certify_all(outlines: &[Vec<Vec<immerse::Point>>], player: immerse::certify::Player) -> usize {
+    use immerse::certify::{MotionOptions, Verdict, certify_motion};
+    let mut segments = 0;
+    for (o, keys) in outlines.iter().enumerate() {
+        for (i, w) in keys.windows(2).enumerate() {
+            let tris = immerse::immersion::triangulate(&w[0])
+                .unwrap_or_else(|e| panic!("outline {o} key {i} is not self-overlapping: {e}"))
+                .triangles;
+            let r = certify_motion(&w[0], &w[1], &[&tris], player, MotionOptions::default());
+            assert_eq!(r.verdict, Verdict::Certified, "outline {o} segment {i}");
+            segments += 1;
+        }
+    }
+    segments
+}
+
+/// The drawing Lottie and animated SVG are written from every shape's
+/// certified keys: read back here, every segment of every shape is
+/// certified; the Lottie groups are in stacking order with each shape's
+/// paint in its own group (no overlap-depth fill over the shapes below);
+/// the styles run from the source's to the target's.
+#[test]
+fn drawing_lottie_and_animated_svg_certify_shape_by_shape() {
+    use crate::util::{immerse_in, stderr};
+    use immerse::certify::Player;
+    let d = tempfile::tempdir().unwrap();
+    let a = curve("drawings/creature-a.svg");
+    let b = curve("drawings/creature-b.svg");
+    let (a, b) = (a.to_str().unwrap(), b.to_str().unwrap());
+    let out = immerse_in(
+        d.path(),
+        &[
+            "morph",
+            a,
+            b,
+            "--match",
+            "id",
+            "-o",
+            "m.lottie.json",
+            "--json=m.json",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(d.path().join("m.json")).unwrap()).unwrap();
+    let shapes = json["shapes"].as_array().unwrap();
+    let ids: Vec<&str> = shapes.iter().map(|s| s["id"].as_str().unwrap()).collect();
+    assert_eq!(ids, ["body", "shell", "horn", "eye", "hat"]);
+    let mut key_counts = Vec::new();
+    for s in shapes {
+        let keys = s["keyframes"].as_array().unwrap();
+        assert_eq!(s["key_count"].as_u64(), Some(keys.len() as u64));
+        assert!(keys.len() >= 2);
+        key_counts.push(keys.len());
+    }
+    // Growing and shrinking shapes are scalings: two keys.
+    assert_eq!(key_counts[2], 2);
+    assert_eq!(key_counts[4], 2);
+    let text = std::fs::read_to_string(d.path().join("m.lottie.json")).unwrap();
+    let outlines = outlines_of(&text);
+    assert_eq!(outlines.len(), 5);
+    // Lottie lists the shapes top first: the keys of each are the shape's.
+    for (o, k) in outlines.iter().zip(key_counts.iter().rev()) {
+        assert_eq!(o.len(), *k);
+    }
+    assert!(certify_all(&outlines, Player::F32) >= 5);
+    let doc: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let layers = doc["layers"].as_array().unwrap();
+    assert_eq!(layers.len(), 2, "the shapes and the background");
+    let groups = layers[0]["shapes"].as_array().unwrap();
+    let background = &layers[1]["shapes"][0]["it"];
+    assert_eq!(background[0]["ty"], "rc");
+    let rgb = |v: &serde_json::Value| {
+        let c = if v["a"] == 1 {
+            v["k"][0]["s"].clone()
+        } else {
+            v["k"].clone()
+        };
+        let c = c.as_array().unwrap().clone();
+        Color {
+            r: (c[0].as_f64().unwrap() * 255.0).round() as u8,
+            g: (c[1].as_f64().unwrap() * 255.0).round() as u8,
+            b: (c[2].as_f64().unwrap() * 255.0).round() as u8,
+        }
+    };
+    let src = Drawing::from_path(a).unwrap();
+    let dst = Drawing::from_path(b).unwrap();
+    // Stacking order: bottom (listed last) to top; each group holds one
+    // outline and paints only it, with the shape's own colour.
+    let mut bottom_up: Vec<&serde_json::Value> = groups.iter().collect();
+    bottom_up.reverse();
+    for (g, id) in bottom_up.iter().zip(&ids) {
+        let items = g["it"].as_array().unwrap();
+        assert_eq!(items.iter().filter(|i| i["ty"] == "sh").count(), 1);
+        let fills: Vec<&serde_json::Value> = items.iter().filter(|i| i["ty"] == "fl").collect();
+        assert!(fills.len() <= 1, "no depth layer over the shapes below");
+        let shape = src
+            .shapes
+            .iter()
+            .find(|s| s.id == *id)
+            .or_else(|| dst.shapes.iter().find(|s| s.id == *id))
+            .unwrap();
+        if let Some(f) = fills.first() {
+            assert_eq!(Some(rgb(&f["c"])), shape.style.fill, "{id}");
+        }
+    }
+    // The body's colour runs from the source's to the target's.
+    let body = bottom_up[0]["it"].as_array().unwrap();
+    let fill = body.iter().find(|i| i["ty"] == "fl").unwrap();
+    let last = fill["c"]["k"].as_array().unwrap().last().unwrap();
+    let c = last["s"].as_array().unwrap();
+    let target = dst.shapes[0].style.fill.unwrap();
+    assert_eq!((c[0].as_f64().unwrap() * 255.0).round() as u8, target.r);
+    // The animated SVG: the same keys, bottom first, certified for f64.
+    let out = immerse_in(d.path(), &["morph", a, b, "--match", "id", "-o", "m.svg"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let text = std::fs::read_to_string(d.path().join("m.svg")).unwrap();
+    let outlines = outlines_of(&text);
+    assert_eq!(
+        outlines.iter().map(Vec::len).collect::<Vec<_>>(),
+        key_counts
+    );
+    certify_all(&outlines, Player::F64);
+    assert!(text.contains("calcMode=\"linear\" keyTimes=\"0;"));
+    assert!(
+        stderr(&out).contains("keys per shape: 'body' "),
+        "{}",
+        stderr(&out)
+    );
+}
+
+/// `animate` over three drawings: every shape of every frame an immersed
+/// disk; the Lottie of the whole sequence certified shape by shape.
+#[test]
+fn animate_takes_drawings_as_keys() {
+    use crate::util::{immerse_in, stderr};
+    let d = tempfile::tempdir().unwrap();
+    let a = curve("drawings/creature-a.svg");
+    let b = curve("drawings/creature-b.svg");
+    let (a, b) = (a.to_str().unwrap(), b.to_str().unwrap());
+    let out = immerse_in(
+        d.path(),
+        &[
+            "animate",
+            a,
+            b,
+            a,
+            "--match",
+            "id",
+            "--frames",
+            "40",
+            "--json=s.json",
+            "-o",
+            "s.lottie.json",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let out = immerse_in(
+        d.path(),
+        &[
+            "animate", a, b, a, "--match", "id", "--frames", "40", "-o", "f", "--format", "svg",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(d.path().join("s.json")).unwrap()).unwrap();
+    let frames = json["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 40);
+    for (i, f) in frames.iter().enumerate() {
+        let shapes = f["shapes"].as_array().unwrap();
+        assert_eq!(shapes.len(), 5, "frame {i}");
+        for s in shapes {
+            let points: Vec<immerse::Point> = s["points"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|p| immerse::Point::new(p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
+                .collect();
+            let triangles: Vec<[u32; 3]> = serde_json::from_value(s["triangles"].clone()).unwrap();
+            immerse::immersion::check(&points, &triangles)
+                .unwrap_or_else(|e| panic!("frame {i} shape {}: {e}", s["id"]));
+        }
+    }
+    assert_eq!(json["segments"].as_array().unwrap().len(), 2);
+    assert_eq!(json["keys"][1]["shapes"], 4);
+    // The first and last frames are the first key's drawing.
+    let first = frames[0]["shapes"].as_array().unwrap();
+    let last = frames[39]["shapes"].as_array().unwrap();
+    assert_eq!(first[0]["fill"], "#f2cc8f");
+    assert_eq!(last[0]["fill"], "#f2cc8f");
+    let svg = std::fs::read_to_string(d.path().join("f/frame_0020.svg")).unwrap();
+    assert!(
+        svg.contains("fill=\"#81b29a\""),
+        "the middle key's body colour"
+    );
+    let text = std::fs::read_to_string(d.path().join("s.lottie.json")).unwrap();
+    let outlines = outlines_of(&text);
+    assert_eq!(outlines.len(), 10, "five shapes in each of two segments");
+    certify_all(&outlines, immerse::certify::Player::F32);
+    let out = immerse_in(d.path(), &["certify", "s.lottie.json"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+}
+
+/// One SVG whose groups hold several shapes: every group is a drawing
+/// key, read whole; a hole in a key is refused naming the subpath.
+#[test]
+fn group_keys_read_as_drawings_and_holes_are_refused() {
+    use crate::util::{immerse_in, stderr};
+    let d = tempfile::tempdir().unwrap();
+    let keys = r##"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 300 100">
+<g id="one"><rect id="big" x="10" y="10" width="60" height="60" fill="#112233"/><circle id="dot" cx="40" cy="85" r="8" fill="#aa0000"/></g>
+<g id="two"><rect id="big" x="110" y="20" width="80" height="40" fill="#334455"/><circle id="dot" cx="150" cy="85" r="10" fill="#00aa00"/></g>
+<g id="three"><rect id="big" x="210" y="10" width="50" height="70" fill="#556677"/></g>
+</svg>"##;
+    std::fs::write(d.path().join("keys.svg"), keys).unwrap();
+    let groups = Drawing::groups_from_path(d.path().join("keys.svg")).unwrap();
+    assert_eq!(
+        groups.iter().map(Drawing::len).collect::<Vec<_>>(),
+        [2, 2, 1]
+    );
+    assert_eq!(groups[0].name, "group 'one'");
+    assert_eq!(groups[1].shapes[1].style.fill, hex("#00aa00"));
+    let out = immerse_in(
+        d.path(),
+        &[
+            "animate",
+            "keys.svg",
+            "--frames",
+            "20",
+            "--json=k.json",
+            "-o",
+            "k.svg",
+            "--format",
+            "animated-svg",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(d.path().join("k.json")).unwrap()).unwrap();
+    let frames = json["frames"].as_array().unwrap();
+    assert_eq!(frames[0]["shapes"].as_array().unwrap().len(), 2);
+    assert_eq!(frames[0]["shapes"][1]["fill"], "#aa0000");
+    // The dot shrinks away in the second segment.
+    let end = frames.last().unwrap()["shapes"].as_array().unwrap();
+    assert_eq!(end.len(), 2);
+    assert_eq!(end[1]["role"], "vanishing");
+    assert_eq!(end[1]["opacity"], 0.0);
+    let text = std::fs::read_to_string(d.path().join("k.svg")).unwrap();
+    certify_all(&outlines_of(&text), immerse::certify::Player::F64);
+
+    // A hole in a key: exit 2, naming the subpath.
+    std::fs::write(
+        d.path().join("ring.svg"),
+        svg(&format!(
+            r#"<path id="ring" d="{SQUARE_CCW} M 30 30 L 70 30 L 70 70 L 30 70 Z"/><circle cx="150" cy="150" r="20"/>"#
+        )),
+    )
+    .unwrap();
+    let b = curve("drawings/creature-b.svg");
+    let out = immerse_in(
+        d.path(),
+        &["animate", "ring.svg", b.to_str().unwrap(), "-o", "r.gif"],
+    );
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("shape 2 (path 'ring' subpath 2) is a hole in shape 1"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(!d.path().join("r.gif").exists());
 }

@@ -185,8 +185,9 @@ pub(crate) enum SvgKeysArg {
 /// Arguments of `immerse animate`.
 #[derive(Debug, Args)]
 pub(crate) struct AnimateArgs {
-    /// The keys in order: two or more curve files, or one SVG drawing
-    /// whose shapes (or groups, or layers) are the keys.
+    /// The keys in order: two or more curve or drawing files, or one SVG
+    /// whose shapes (or groups, or layers) are the keys; a group of
+    /// several shapes is a drawing key.
     #[arg(value_name = "KEY", required_unless_present = "timeline")]
     pub(crate) keys: Vec<PathBuf>,
     /// A timeline file (JSON): keys with times or durations, holds,
@@ -196,6 +197,11 @@ pub(crate) struct AnimateArgs {
     /// Which shapes of an SVG drawing are the keys (default auto).
     #[arg(long, value_enum)]
     pub(crate) svg_keys: Option<SvgKeysArg>,
+    /// For keys that are drawings (files of several shapes, or an SVG
+    /// whose groups hold several): which shape of a key becomes which of
+    /// the next (docs/design.md §2b).
+    #[arg(long = "match", value_enum, default_value_t = MatchArg::Auto)]
+    pub(crate) match_mode: MatchArg,
     /// Frames over the whole sequence, holds included (default: the
     /// timeline's, else 2 seconds per segment at --fps).
     #[arg(long, value_parser = clap::value_parser!(u32).range(2..=100_000))]

@@ -78,6 +78,15 @@ pub(crate) struct Written {
     pub(crate) digits: Option<u32>,
     /// Keys written.
     pub(crate) keys: usize,
+    /// Keys written of each shape (one entry for a curve).
+    pub(crate) per_shape: Vec<usize>,
+}
+
+/// One animated outline a document writes: its name in messages (empty
+/// for the one curve of a morph) and its keys as played (`t` in frames).
+pub(crate) struct Outline<'a> {
+    pub(crate) name: &'a str,
+    pub(crate) keys: &'a [Keyframe],
 }
 
 /// The document of `kind` for `played`, in the pixels of `view`, with
@@ -101,8 +110,11 @@ pub(crate) fn write(
         .map(|k| render::Frame::from_triangles(super::plain_points(&k.points), Vec::new()))
         .collect();
     let times: Vec<f64> = played.keys.iter().map(|k| k.t).collect();
-    let mut why = String::new();
-    for digits in DIGITS {
+    let outline = [Outline {
+        name: "",
+        keys: &played.keys,
+    }];
+    write_certified(kind, &outline, |digits| {
         let keys = render::Keys {
             shapes: &shapes,
             times: &times,
@@ -110,16 +122,38 @@ pub(crate) fn write(
             view,
             digits,
         };
-        let text = match kind {
-            Kind::Lottie => render::lottie_keys(&keys, style, fps)?,
-            Kind::AnimatedSvg => render::animated_svg_keys(&keys, style, fps, looping)?,
-        };
-        match certify_written(kind, &text, played) {
+        match kind {
+            Kind::Lottie => render::lottie_keys(&keys, style, fps),
+            Kind::AnimatedSvg => render::animated_svg_keys(&keys, style, fps, looping),
+        }
+    })
+}
+
+/// The document `render` writes with the fewest decimals that certify as
+/// written: read back with the library's reader, its animated outlines
+/// (in the order of `outlines`, which is the document's) certified
+/// segment by segment with the keys' triangulations.
+///
+/// # Errors
+///
+/// A render error, or none of the precisions certified (the message names
+/// the shape, the segment and why).
+pub(crate) fn write_certified(
+    kind: Kind,
+    outlines: &[Outline<'_>],
+    render: impl Fn(Option<u32>) -> Result<String, render::RenderError>,
+) -> anyhow::Result<Written> {
+    let mut why = String::new();
+    for digits in DIGITS {
+        let text = render(digits)?;
+        match certify_written(kind, &text, outlines) {
             Ok(()) => {
+                let per_shape: Vec<usize> = outlines.iter().map(|o| o.keys.len()).collect();
                 return Ok(Written {
                     text,
                     digits,
-                    keys: shapes.len(),
+                    keys: per_shape.iter().sum(),
+                    per_shape,
                 });
             }
             Err(e) => why = e,
@@ -135,35 +169,54 @@ pub(crate) fn write(
     )
 }
 
-/// Reads `text` back and certifies every segment of its animated outline
+/// Reads `text` back and certifies every segment of its animated outlines
 /// with the keys' triangulations (re-triangulating where one fails).
-fn certify_written(kind: Kind, text: &str, played: &Played) -> Result<(), String> {
+fn certify_written(kind: Kind, text: &str, outlines: &[Outline<'_>]) -> Result<(), String> {
     let anim = read_animation(text.as_bytes(), kind.name()).map_err(|e| e.to_string())?;
-    let path = anim
-        .paths
-        .iter()
-        .find(|p| p.keys.len() == played.keys.len())
-        .ok_or_else(|| "the animated outline was not read back".to_string())?;
-    let points = |i: usize| {
-        let mut p = path.keys[i].points.clone();
-        if path.reversed {
-            p.reverse();
-        }
-        p
-    };
+    // Outlines of one key are written static: nothing moves to certify.
+    let moving: Vec<&Outline<'_>> = outlines.iter().filter(|o| o.keys.len() > 1).collect();
+    if anim.paths.len() != moving.len()
+        || anim
+            .paths
+            .iter()
+            .zip(&moving)
+            .any(|(p, o)| p.keys.len() != o.keys.len())
+    {
+        return Err(format!(
+            "the animated outline{} {} not read back as written ({} read, {} written)",
+            if moving.len() == 1 { "" } else { "s" },
+            if moving.len() == 1 { "was" } else { "were" },
+            anim.paths.len(),
+            moving.len()
+        ));
+    }
     let player = kind.player();
-    let failures: Vec<String> = (0..path.keys.len().saturating_sub(1))
+    let segments: Vec<(usize, usize)> = moving
+        .iter()
+        .enumerate()
+        .flat_map(|(o, m)| (0..m.keys.len() - 1).map(move |i| (o, i)))
+        .collect();
+    let failures: Vec<String> = segments
         .into_par_iter()
-        .filter_map(|i| {
+        .filter_map(|(o, i)| {
+            let path = &anim.paths[o];
+            let keys = moving[o].keys;
+            let points = |i: usize| {
+                let mut p = path.keys[i].points.clone();
+                if path.reversed {
+                    p.reverse();
+                }
+                p
+            };
             let (a, b) = (points(i), points(i + 1));
-            let tris = &played.keys[i].triangles;
+            let tris = &keys[i].triangles;
             let direct = certify_segment(&a, &b, tris, player)
                 .ok()
                 .filter(|r| r.is_certified());
             if direct.is_some() {
                 return None;
             }
-            let next = &played.keys[i + 1].triangles;
+            let next = &keys[i + 1].triangles;
             let again = certify_motion(
                 &a,
                 &b,
@@ -171,17 +224,22 @@ fn certify_written(kind: Kind, text: &str, played: &Played) -> Result<(), String
                 player,
                 MotionOptions::default(),
             );
+            let shape = if moving[o].name.is_empty() {
+                String::new()
+            } else {
+                format!("{}: ", moving[o].name)
+            };
             match again.verdict {
                 Verdict::Certified => None,
                 Verdict::Invalid { at } => Some(format!(
-                    "segment {i} (frames {} to {}) is not an immersed disk at s = {at}",
-                    played.keys[i].t,
-                    played.keys[i + 1].t
+                    "{shape}segment {i} (frames {} to {}) is not an immersed disk at s = {at}",
+                    keys[i].t,
+                    keys[i + 1].t
                 )),
                 Verdict::Undecided { reached, reason } => Some(format!(
-                    "segment {i} (frames {} to {}) is certified only up to s = {reached} ({reason})",
-                    played.keys[i].t,
-                    played.keys[i + 1].t
+                    "{shape}segment {i} (frames {} to {}) is certified only up to s = {reached} ({reason})",
+                    keys[i].t,
+                    keys[i + 1].t
                 )),
             }
         })
@@ -201,10 +259,20 @@ pub(crate) fn save(written: &Written, out: &std::path::Path, force: bool) -> any
 
 /// What a note says about a written document.
 pub(crate) fn describe(kind: Kind, written: &Written, bytes: usize) -> String {
+    let keys = if written.per_shape.len() > 1 {
+        let each: Vec<String> = written.per_shape.iter().map(usize::to_string).collect();
+        format!(
+            "{} keys ({} shapes: {})",
+            written.keys,
+            written.per_shape.len(),
+            each.join(", ")
+        )
+    } else {
+        format!("{} keys", written.keys)
+    };
     format!(
-        "{}: {} keys, coordinates {}, certified as written for an {} player ({bytes} bytes)",
+        "{}: {keys}, coordinates {}, certified as written for an {} player ({bytes} bytes)",
         kind.name(),
-        written.keys,
         match written.digits {
             Some(d) => format!("to {d} decimals"),
             None => "in full precision".to_string(),

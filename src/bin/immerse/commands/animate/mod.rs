@@ -1,6 +1,7 @@
 //! `immerse animate`: a keyframe sequence K1 → K2 → K3 … from curve files,
 //! one SVG drawing, or a timeline file (docs/timeline.md).
 
+mod drawings;
 mod timeline;
 
 use super::keyed::Played;
@@ -62,12 +63,18 @@ pub(crate) fn run(args: &AnimateArgs) -> anyhow::Result<Outcome> {
     if let Some(json) = &args.json {
         super::check_output_file(json, args.force)?;
     }
-    let keys = read_keys(&tl, svg_mode, &prefix)?;
+    let drawing_keys = drawings::read_keys(&tl, svg_mode, &prefix)?;
+    let key_count = drawing_keys.as_ref().map(Vec::len);
+    let keys = match key_count {
+        Some(_) => Vec::new(),
+        None => read_keys(&tl, svg_mode, &prefix)?,
+    };
     // Every image output is checked before any work (the keys are read
     // first: a contact sheet's size depends on how many there are).
     let fps = args.fps.or(tl.fps).unwrap_or(30.0);
     let style = image_style(args);
-    let sheet_frames = (keys.len().saturating_sub(1)) * (args.sheet_inbetweens as usize + 2);
+    let sheet_frames =
+        (key_count.unwrap_or(keys.len()).saturating_sub(1)) * (args.sheet_inbetweens as usize + 2);
     let mut images = Vec::with_capacity(args.output.len());
     for out in &args.output {
         images.push(super::check_images(
@@ -86,6 +93,17 @@ pub(crate) fn run(args: &AnimateArgs) -> anyhow::Result<Outcome> {
     )];
     on_stdout.extend(args.output.iter().map(|o| ("-o", render::is_stdout(o))));
     super::one_stdout(&on_stdout)?;
+    if let Some(drawing_keys) = drawing_keys {
+        let timing = timing_of(
+            args,
+            &drawing_keys.iter().map(|k| &k.spec).collect::<Vec<_>>(),
+            fps,
+            tl.frames,
+            cli_easing,
+        );
+        let looping = looping_of(args, &tl);
+        return drawings::run(args, &drawing_keys, &timing, &images, &prefix, looping);
+    }
     if !args.quiet {
         for k in &keys {
             if k.curve.reversed {
@@ -132,26 +150,8 @@ pub(crate) fn run(args: &AnimateArgs) -> anyhow::Result<Outcome> {
         }
         Err(e) => anyhow::bail!("{prefix}{e}"),
     };
-    // Timing.
-    let m = keys.len();
-    let timing = Timing {
-        fps,
-        frames: args.frames.map(|f| f as usize).or(tl.frames),
-        keys: keys
-            .iter()
-            .enumerate()
-            .map(|(j, k)| KeyTiming {
-                time: k.spec.time,
-                hold: k.spec.hold.unwrap_or(if j > 0 && j + 1 < m {
-                    args.hold.unwrap_or(0.0)
-                } else {
-                    0.0
-                }),
-                duration: k.spec.duration,
-                easing: ease(k.spec.easing.or(cli_easing)),
-            })
-            .collect(),
-    };
+    let specs: Vec<&KeySpec> = keys.iter().map(|k| &k.spec).collect();
+    let timing = timing_of(args, &specs, fps, tl.frames, cli_easing);
     let schedule = seq
         .schedule(&timing)
         .map_err(|e| anyhow::anyhow!("{prefix}{e}"))?;
@@ -190,13 +190,7 @@ pub(crate) fn run(args: &AnimateArgs) -> anyhow::Result<Outcome> {
         };
         super::write_json(json, &value, false, args.force)?;
     }
-    let looping = if args.ping_pong {
-        render::Loop::PingPong
-    } else if args.once {
-        render::Loop::Once
-    } else {
-        tl.looping.unwrap_or(render::Loop::Loop)
-    };
+    let looping = looping_of(args, &tl);
     let played = Played::new(&keyframes, &seq.frame_times(&schedule), looping, eased);
     for (out, image) in args.output.iter().zip(&images) {
         write_output(args, out, *image, &morph, &played, &schedule, fps, looping)?;
@@ -214,6 +208,48 @@ pub(crate) fn run(args: &AnimateArgs) -> anyhow::Result<Outcome> {
         ))?;
     }
     Ok(Outcome::Success)
+}
+
+/// How the animation plays: the command line's choice, else the
+/// timeline's, else looping.
+fn looping_of(args: &AnimateArgs, tl: &Timeline) -> render::Loop {
+    if args.ping_pong {
+        render::Loop::PingPong
+    } else if args.once {
+        render::Loop::Once
+    } else {
+        tl.looping.unwrap_or(render::Loop::Loop)
+    }
+}
+
+/// The timing of keys with these specs: the timeline's times, holds,
+/// durations and easings, else the command line's.
+fn timing_of(
+    args: &AnimateArgs,
+    specs: &[&KeySpec],
+    fps: f64,
+    frames: Option<usize>,
+    cli_easing: Option<render::Easing>,
+) -> Timing {
+    let m = specs.len();
+    Timing {
+        fps,
+        frames: args.frames.map(|f| f as usize).or(frames),
+        keys: specs
+            .iter()
+            .enumerate()
+            .map(|(j, k)| KeyTiming {
+                time: k.time,
+                hold: k.hold.unwrap_or(if j > 0 && j + 1 < m {
+                    args.hold.unwrap_or(0.0)
+                } else {
+                    0.0
+                }),
+                duration: k.duration,
+                easing: ease(k.easing.or(cli_easing)),
+            })
+            .collect(),
+    }
 }
 
 fn ease(e: Option<render::Easing>) -> Ease {

@@ -571,7 +571,7 @@ fn morph_drawings(
 ) -> Result<(Vec<Bytes>, Job), ApiError> {
     use crate::commands::drawing_morph;
     let started = Instant::now();
-    let (frames, matching) = jobs::compute_drawings(plan, drawings, mode, stop)?;
+    let (frames, matching, keys) = jobs::compute_drawings(plan, drawings, mode, stop)?;
     let elapsed = started.elapsed();
     let [a, b] = drawings;
     let notices: Vec<String> = [a, b]
@@ -586,6 +586,7 @@ fn morph_drawings(
     let morph_json = exact_json(&drawing_morph::DrawingMorphJson {
         matching: drawing_morph::report(a, b, &matching),
         notices,
+        shapes: &keys,
         frames: &frames,
     })?;
     let id = JobId::random()?;

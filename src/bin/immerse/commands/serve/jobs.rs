@@ -20,7 +20,7 @@ use clap::ValueEnum;
 use immerse::curve::{CurveError, Format};
 use immerse::drawing::{
     Drawing, DrawingError, DrawingFrame, DrawingTween, DrawingTweenError, MatchMode, Matching,
-    match_shapes,
+    ShapeKeys, match_shapes,
 };
 use immerse::frames::{Fallback, Morph};
 use immerse::morph::{
@@ -673,7 +673,7 @@ pub(super) fn compute_drawings(
     drawings: &[Drawing; 2],
     mode: MatchMode,
     stop: &Stop,
-) -> Result<(Vec<DrawingFrame>, Matching), ApiError> {
+) -> Result<(Vec<DrawingFrame>, Matching, Vec<ShapeKeys>), ApiError> {
     let [a, b] = drawings;
     let matching = match_shapes(a, b, mode);
     let tween = DrawingTween::new(a, b, &matching, &plan.options).map_err(|e| match e {
@@ -684,6 +684,9 @@ pub(super) fn compute_drawings(
         } => ApiError::bad(e.to_string()),
         other => ApiError::new(500, format!("the morph failed: {other}")),
     })?;
+    let keys = tween
+        .shape_keys()
+        .map_err(|e| ApiError::new(500, format!("the morph failed: {e}")))?;
     let mut frames = Vec::with_capacity(plan.times.len());
     for &t in &plan.times {
         if stop.now() {
@@ -695,7 +698,7 @@ pub(super) fn compute_drawings(
                 .map_err(|e| ApiError::new(500, format!("the morph failed: {e}")))?,
         );
     }
-    Ok((frames, matching))
+    Ok((frames, matching, keys))
 }
 
 /// Runs the morph of a plan, with its keys: with two curves one [`Tween`],

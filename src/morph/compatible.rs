@@ -1085,13 +1085,13 @@ pub(crate) mod tests {
         assert_eq!(estimate_angle(f64::NAN, 1.0), None);
     }
 
+    /// The test kit's xorshift64 stream ([`testkit::Rng::xorshift`]) as
+    /// the morph tests call it: `Rng(seed)`, and `next()` uniform in
+    /// [0, 1).
     pub(crate) struct Rng(pub(crate) u64);
     impl Rng {
         pub(crate) fn next(&mut self) -> f64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+            testkit::rng::unit_from_bits(testkit::rng::xorshift64(&mut self.0))
         }
     }
 
@@ -1276,31 +1276,9 @@ pub(crate) mod tests {
         assert!(fell[0] > 0 && fell[1] > 0, "{fell:?}");
     }
 
-    /// A spiral strip of `m` stations curling `turns` times, with its
-    /// zigzag triangulation: outer edge forward (vertices 0..m), inner
-    /// edge backward (vertices m..2m).
-    pub(crate) fn spiral_strip(m: usize, turns: f64, width: f64) -> (Vec<Point>, Vec<[u32; 3]>) {
-        let station = |i: usize| {
-            let th = turns * TAU * i as f64 / (m - 1) as f64;
-            (th, 1.0 + 0.12 * th / TAU)
-        };
-        let mut pts = Vec::with_capacity(2 * m);
-        for i in 0..m {
-            let (th, r) = station(i);
-            pts.push(Point::from_angle(th) * (r + width / 2.0));
-        }
-        for i in (0..m).rev() {
-            let (th, r) = station(i);
-            pts.push(Point::from_angle(th) * (r - width / 2.0));
-        }
-        let n = 2 * m as u32;
-        let mut tris = Vec::new();
-        for i in 0..(m as u32 - 1) {
-            tris.push([i, i + 1, n - 1 - i]);
-            tris.push([i + 1, n - 2 - i, n - 1 - i]);
-        }
-        (pts, tris)
-    }
+    /// A spiral strip and its zigzag triangulation (the test kit's: outer
+    /// edge forward, vertices 0..m; inner edge backward, m..2m).
+    pub(crate) use testkit::shapes::spiral_strip;
 
     #[test]
     fn spirals_unwind_and_wind_with_every_frame_an_immersion() {

@@ -1165,15 +1165,19 @@ pub(crate) mod tests {
         lay_out(n, triangles, &ang).unwrap()
     }
 
+    /// The guaranteed paths on random pairs of immersed disks, simple and
+    /// overlapping themselves (at curl 6, 11 of the 60 cases have a side
+    /// that overlaps itself; at least a tenth must).
     #[test]
     fn guaranteed_paths_give_immersions_on_random_compatible_pairs() {
         let mut rng = Rng(0x853c49e6748fea9b);
         let mut self_intersecting = 0;
-        for case in 0..60 {
+        let cases = 60;
+        for case in 0..cases {
             let n = 5 + (rng.next() * 40.0) as usize;
             let tris = random_triangulation(n as u32, &mut rng);
-            let a = random_immersed_disk(n, &tris, 3.0, &mut rng);
-            let mut b = random_immersed_disk(n, &tris, 3.0, &mut rng);
+            let a = random_immersed_disk(n, &tris, 6.0, &mut rng);
+            let mut b = random_immersed_disk(n, &tris, 6.0, &mut rng);
             // A large rotation, a scale and a shift of the target.
             let rot = Point::from_angle(rng.next() * TAU) * (0.3 + 3.0 * rng.next());
             let shift = Point::new(rng.next() * 10.0, rng.next() * 10.0);
@@ -1237,7 +1241,10 @@ pub(crate) mod tests {
                 }
             }
         }
-        let _ = self_intersecting;
+        assert!(
+            self_intersecting * 10 >= cases,
+            "only {self_intersecting} of {cases} cases overlap themselves"
+        );
     }
 
     #[test]
@@ -1283,7 +1290,6 @@ pub(crate) mod tests {
     #[test]
     fn spirals_unwind_and_wind_with_every_frame_an_immersion() {
         let mut rng = Rng(0xfeed);
-        let mut fell_back = 0;
         for case in 0..24 {
             let m = 10 + (rng.next() * 40.0) as usize;
             let (t1, t2) = (0.3 + 2.0 * rng.next(), 0.3 + 2.0 * rng.next());
@@ -1308,14 +1314,13 @@ pub(crate) mod tests {
                 assert!(morph.frames.iter().all(Frame::is_immersion));
                 assert_eq!(morph.frames[0].points, a);
                 assert_eq!(morph.frames[200].points, b);
-                if morph.fallback {
-                    fell_back += 1;
-                    assert_eq!(morph.paths, [ThirdVertexPath::Hybrid]);
-                    assert!(!path.is_guaranteed());
-                }
+                // Every path's own frames: none of them, the unguaranteed
+                // linear and rotate-slide included, folds on these strips
+                // and falls back to the hybrid path.
+                assert!(!morph.fallback, "case {case} {path} fell back");
+                assert_eq!(morph.paths, [path], "case {case}");
             }
         }
-        let _ = fell_back;
     }
 
     pub(crate) fn bbox_diag(p: &[Point]) -> f64 {

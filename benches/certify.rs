@@ -18,9 +18,7 @@ use immerse::Point;
 use immerse::certify::{Player, certify_segment};
 use std::hint::black_box;
 
-#[path = "../tests/common/shapes.rs"]
-mod shapes;
-use shapes::spiral_strip;
+use testkit::shapes::spiral_strip;
 
 fn certify(c: &mut Criterion) {
     let sizes = [100, 1000, 10_000];

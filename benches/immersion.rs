@@ -8,9 +8,7 @@ use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use immerse::{improve, triangulate, triangulate_maxmin};
 use std::hint::black_box;
 
-#[path = "../tests/common/shapes.rs"]
-mod shapes;
-use shapes::wide_spiral;
+use testkit::shapes::wide_spiral;
 
 fn immersion(c: &mut Criterion) {
     let mut g = c.benchmark_group("dp");

@@ -12,9 +12,7 @@ use immerse::morph::{Compatible, CurveMorphOptions, ThirdVertexPath, Tween, morp
 use immerse::tree::RootChoice;
 use std::hint::black_box;
 
-#[path = "../tests/common/shapes.rs"]
-mod shapes;
-use shapes::spiral_strip;
+use testkit::shapes::spiral_strip;
 
 fn frames(c: &mut Criterion) {
     let mut g = c.benchmark_group("frame");

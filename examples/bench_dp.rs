@@ -27,12 +27,9 @@ use immerse::immersion::dp_memory_bytes;
 use immerse::quality::maxmin_memory_bytes;
 use immerse::{improve, triangulate, triangulate_maxmin};
 
-#[path = "../tests/common/stress.rs"]
-#[allow(dead_code, reason = "only the curve generators are used here")]
-mod harness;
+use testkit::stress as harness;
 
-#[path = "../tests/common/shapes.rs"]
-mod shapes;
+use testkit::shapes;
 
 /// A regular n-gon: convex, so every triangle is valid (the max–min DP's
 /// worst case for pruning).
@@ -64,7 +61,7 @@ fn fmt_ms(s: f64) -> String {
 /// The star-shaped blob of the stress generators (simple, nearly convex),
 /// with a fixed seed.
 fn blob(n: usize) -> Vec<Point> {
-    harness::blob(&mut harness::Rng::new(7, n as u64), n)
+    harness::blob(&mut testkit::Rng::stream(7, n as u64), n)
 }
 
 fn arg(name: &str) -> Option<String> {

@@ -8,9 +8,7 @@ use immerse::morph::{Compatible, CurveMorphOptions, ThirdVertexPath, morph_curve
 use immerse::tree::RootChoice;
 use std::time::Instant;
 
-#[path = "../tests/common/shapes.rs"]
-mod shapes;
-use shapes::spiral_strip;
+use testkit::shapes::spiral_strip;
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);

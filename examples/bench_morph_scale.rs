@@ -33,8 +33,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-#[path = "../tests/common/shapes.rs"]
-mod shapes;
+use testkit::shapes;
 
 /// A spiral strip of n vertices (n/2 stations, outer edge out, inner edge
 /// back) wound `turns` times; its width is more than the radius gained in

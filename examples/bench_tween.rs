@@ -19,9 +19,7 @@ use immerse::{Curve, Point};
 use std::hint::black_box;
 use std::time::Instant;
 
-#[path = "../tests/common/shapes.rs"]
-mod shapes;
-use shapes::spiral_strip;
+use testkit::shapes::spiral_strip;
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);

@@ -37,6 +37,7 @@ use immerse::geom::polygon::triangle_angles;
 use immerse::immersion::check;
 use immerse::morph::{area_and_centroid, lay_out};
 use immerse::quality::{Quality, triangulate_with};
+use testkit::Rng;
 
 /// Seed of the deformations (xorshift64).
 const SEED: u64 = 0x1d2c_3b4a_5968_7788;
@@ -176,18 +177,6 @@ fn pairs() -> Vec<(&'static str, &'static str, Kind)> {
     ]
 }
 
-/// xorshift64, uniform in [0, 1).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 fn bbox_diag(p: &[Point]) -> f64 {
     let (mut lo, mut hi) = (Point::splat(f64::INFINITY), Point::splat(f64::NEG_INFINITY));
     for &q in p {
@@ -221,7 +210,7 @@ fn deform(src: &[Point], triangles: &[[u32; 3]], strength: f64, rng: &mut Rng) -
     let rnd: Vec<[f64; 3]> = orig
         .iter()
         .map(|a| {
-            let f = a.map(|x| x * (strength * (2.0 * rng.next() - 1.0)).exp());
+            let f = a.map(|x| x * (strength * (2.0 * rng.unit() - 1.0)).exp());
             let s = f[0] + f[1] + f[2];
             f.map(|x| x * PI / s)
         })
@@ -281,7 +270,7 @@ fn main() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let out_dir: PathBuf = root.join("curves").join("pairs");
     std::fs::create_dir_all(&out_dir).unwrap();
-    let mut rng = Rng(SEED);
+    let mut rng = Rng::xorshift(SEED);
     println!("| pair | source | n | kind | simple (src/dst) | T_q(src) valid on dst |");
     println!("|---|---|---:|---|---|---|");
     for (name, file, kind) in pairs() {

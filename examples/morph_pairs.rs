@@ -13,9 +13,7 @@ use immerse::morph::{Correspondence, CurveMorphOptions, Intermediate, morph_curv
 use std::path::Path;
 use std::time::Instant;
 
-#[path = "../tests/common/pairs.rs"]
-mod pairs;
-use pairs::reference_pairs;
+use testkit::pairs::reference_pairs;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();

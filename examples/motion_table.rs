@@ -28,8 +28,7 @@ use immerse::morph::{
 use std::path::Path;
 use std::time::Instant;
 
-#[path = "../tests/common/pairs.rs"]
-mod pairs;
+use testkit::pairs;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();

@@ -19,11 +19,8 @@ use rayon::prelude::*;
 use std::path::Path;
 use std::time::Instant;
 
-#[path = "../tests/common/stress.rs"]
-#[allow(dead_code, reason = "only the generators are used here")]
-mod harness;
-#[path = "../tests/common/pairs.rs"]
-mod pairs;
+use testkit::pairs;
+use testkit::stress as harness;
 
 /// One pair's measures.
 #[derive(Clone, Debug)]

@@ -12,10 +12,8 @@ use immerse::morph::{CurveMorphOptions, Tween};
 use immerse::sequence::{Key, Sequence, SequenceOptions, Timing, key_speeds};
 use std::path::Path;
 
-#[path = "../tests/common/pacing.rs"]
-mod pacing;
-#[path = "../tests/common/pairs.rs"]
-mod pairs;
+use testkit::pacing;
+use testkit::pairs;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();

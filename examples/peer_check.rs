@@ -35,9 +35,7 @@ const FRAMES: usize = 41;
 /// Timed repetitions per method; the table shows the fastest.
 const REPEATS: usize = 3;
 
-#[path = "../tests/common/pairs.rs"]
-mod pairs;
-use pairs::reference_pairs;
+use testkit::pairs::reference_pairs;
 
 #[derive(Serialize, Deserialize)]
 struct Ring {

@@ -1,5 +1,5 @@
 //! The long stress run: random pairs of self-overlapping
-//! curves from the generators of `tests/common/stress.rs` (thin wedges and
+//! curves from the generators of `testkit/src/stress.rs` (thin wedges and
 //! strips, collinear runs, very short edges, spirals, loops, glued disks at
 //! scales 1e-6..1e6), morphed under random options; every frame is checked
 //! exactly. Prints the count, the failures (by category, generator and
@@ -40,10 +40,8 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
-#[path = "../tests/common/stress.rs"]
-#[allow(dead_code, reason = "some helpers serve the integration tests only")]
-mod harness;
 use harness::{DEFAULT_SEED, Failure, Pair, normalise, pair, run_pair, run_pairs, shrink};
+use testkit::stress as harness;
 
 struct Args {
     pairs: u64,
@@ -212,7 +210,7 @@ fn main() {
 
     if let Some(dir) = &args.gallery {
         std::fs::create_dir_all(dir).unwrap();
-        let mut rng = harness::Rng::new(args.seed, 0x9a11e7);
+        let mut rng = testkit::Rng::stream(args.seed, 0x9a11e7);
         for g in harness::Generator::ALL {
             for k in 0..4 {
                 let (p, _) = harness::generate(&mut rng, g);

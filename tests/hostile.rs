@@ -20,15 +20,12 @@
     reason = "items of a test binary are reachable only inside it"
 )]
 
-#[path = "common/serve.rs"]
-mod serve;
-
-use serve::Server;
 use std::io::{Read, Write};
 use std::net::TcpStream;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
+use testkit::serve::{Server, rss_of};
 
 /// The most resident memory the server may use under any attack here:
 /// the stored-morph budget (`--job-memory`, 128 MiB by default), the work
@@ -151,19 +148,6 @@ impl Watch {
     }
 }
 
-fn rss_of(pid: u32) -> Option<u64> {
-    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
-    let kb: u64 = status
-        .lines()
-        .find_map(|l| l.strip_prefix("VmRSS:"))?
-        .trim()
-        .trim_end_matches("kB")
-        .trim()
-        .parse()
-        .ok()?;
-    Some(kb * 1024)
-}
-
 /// `GET /` on a new connection: true when a whole 200 answer came within
 /// [`PROBE_LIMIT`].
 fn probe(port: u16) -> bool {
@@ -261,7 +245,7 @@ fn morph(port: u16, body: &serde_json::Value) -> Option<serde_json::Value> {
     s.write_all(text.as_bytes()).ok()?;
     let mut out = Vec::new();
     let _ = s.read_to_end(&mut out);
-    let (status, _, body) = serve::parse_response(&out);
+    let (status, _, body) = testkit::serve::parse_response(&out);
     (status == 200).then(|| serde_json::from_slice(&body).ok())?
 }
 

@@ -9,6 +9,7 @@ use immerse_mesh::mesh_morph::{
 };
 use immerse_mesh::tiling::{Tiling, TilingError};
 use std::path::{Path, PathBuf};
+use testkit::Rng;
 
 /// The workspace's sample tilings (`meshes/`, beside this crate's folder).
 fn meshes() -> PathBuf {
@@ -35,20 +36,6 @@ fn rel_diff(a: &[Point], b: &[Point]) -> f64 {
         .map(|(p, q)| (*p - *q).length())
         .fold(0.0, f64::max)
         / scale
-}
-
-/// Small deterministic generator (xorshift64*).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next()
-    }
 }
 
 const PAIRS: [(&str, &str); 5] = [
@@ -235,7 +222,7 @@ fn power_approaches_linear_when_linear_is_valid() {
 
 #[test]
 fn appendix_a_agrees_with_dense_sampling_on_random_stars() {
-    let mut rng = Rng(0x5eed_1234_abcd_0001);
+    let mut rng = Rng::xorshift_star(0x5eed_1234_abcd_0001);
     let star = |rng: &mut Rng, d: usize| -> (Point, Vec<Point>) {
         // Valid star: sorted angles with gaps below π.
         loop {
@@ -264,7 +251,7 @@ fn appendix_a_agrees_with_dense_sampling_on_random_stars() {
     let samples = 4000;
     let (mut valid, mut invalid) = (0, 0);
     for _ in 0..400 {
-        let d = 3 + (rng.next() * 5.0) as usize;
+        let d = 3 + (rng.unit() * 5.0) as usize;
         let (c0, r0) = star(&mut rng, d);
         let (c1, r1) = star(&mut rng, d);
         let exact = check_star_linear(c0, &r0, c1, &r1);
@@ -300,12 +287,88 @@ fn appendix_a_agrees_with_dense_sampling_on_random_stars() {
     );
 }
 
+/// The polar boundary morph (Floater & Gotsman, "How to morph tilings
+/// injectively", §6) as seen in the frames: about the centre that moves
+/// linearly between the two boundaries' vertex centroids, each boundary
+/// vertex's distance and (unwrapped) angle change linearly in t. Moving
+/// the boundary vertices on straight lines gives neither; the test
+/// measures by how much, so that it tells the two apart.
 #[test]
 fn different_boundaries_use_the_polar_boundary_morph() {
     let (a, b) = (mesh("square5_a.json"), mesh("rotated5_b.json"));
+    let boundary = a.boundary();
+    assert!(boundary.len() >= 3);
+    let centre = |t: &Tiling| {
+        boundary
+            .iter()
+            .map(|&v| t.points[v as usize])
+            .sum::<Point>()
+            / boundary.len() as f64
+    };
+    let (ca, cb) = (centre(&a), centre(&b));
+    let centre_at = |t: f64| ca.lerp(cb, t);
+    let ts = times(40);
+    // Distance of vertex v from the moving centre at time t, against the
+    // linear interpolation of its two end distances (relative error).
+    let radius_error = |points: &[Point], v: u32, t: f64| {
+        let (ra, rb) = (
+            (a.points[v as usize] - ca).length(),
+            (b.points[v as usize] - cb).length(),
+        );
+        let want = (1.0 - t) * ra + t * rb;
+        ((points[v as usize] - centre_at(t)).length() - want).abs() / want
+    };
+    // The straight-line boundary misses the radius property by far.
+    let straight_miss = ts
+        .iter()
+        .flat_map(|&t| {
+            let points: Vec<Point> = a
+                .points
+                .iter()
+                .zip(&b.points)
+                .map(|(p, q)| p.lerp(*q, t))
+                .collect();
+            boundary
+                .iter()
+                .map(|&v| radius_error(&points, v, t))
+                .collect::<Vec<_>>()
+        })
+        .fold(0.0, f64::max);
+    assert!(straight_miss > 0.05, "{straight_miss}");
     for method in [Method::Convex, Method::Intrinsic, Method::Local] {
-        let frames = mesh_morph(&a, &b, method, &times(40), &MeshMorphOptions::DEFAULT).unwrap();
+        let frames = mesh_morph(&a, &b, method, &ts, &MeshMorphOptions::DEFAULT).unwrap();
         assert!(all_valid(&frames), "{method}");
+        assert!(rel_diff(&frames[0].points, &a.points) < 1e-12, "{method}");
+        assert!(
+            rel_diff(&frames[ts.len() - 1].points, &b.points) < 1e-12,
+            "{method}"
+        );
+        for &v in &boundary {
+            // The angle about the moving centre, unwrapped along the frames
+            // (consecutive frames turn by far less than half a turn).
+            let mut angle = vec![0.0];
+            for w in frames.windows(2) {
+                let p = w[0].points[v as usize] - centre_at(w[0].t);
+                let q = w[1].points[v as usize] - centre_at(w[1].t);
+                angle.push(angle[angle.len() - 1] + p.perp_dot(q).atan2(p.dot(q)));
+            }
+            let total = angle[angle.len() - 1];
+            assert!(total.abs() > 0.1, "{method}: vertex {v} turns by {total}");
+            for (f, frame) in frames.iter().enumerate() {
+                let e = radius_error(&frame.points, v, frame.t);
+                assert!(
+                    e < 1e-9,
+                    "{method}: vertex {v} at t = {}: radius off by {e}",
+                    frame.t
+                );
+                let drift = (angle[f] - frame.t * total).abs();
+                assert!(
+                    drift < 1e-9,
+                    "{method}: vertex {v} at t = {}: angle off by {drift}",
+                    frame.t
+                );
+            }
+        }
     }
 }
 

@@ -2,7 +2,7 @@
 
 The pair is the one of the Rust benchmark `tween/500` (benches/morph.rs):
 spiral strips of 250 stations turning 1.4 and 0.7 times, width 0.3
-(tests/common/shapes.rs). Compare its median with
+(testkit/src/shapes.rs). Compare its median with
 
     cargo bench --bench morph -- tween/500
 

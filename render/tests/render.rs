@@ -321,32 +321,183 @@ fn gif_decodes_with_the_right_frame_count() {
     assert_no_temp_files(dir.path());
 }
 
+/// The subpaths of SVG path data made of `M`, `L` and `Z` commands: the
+/// corners of each and whether it is closed.
+fn subpaths(d: &str) -> Vec<(Vec<[f64; 2]>, bool)> {
+    let mut out: Vec<(Vec<[f64; 2]>, bool)> = Vec::new();
+    let mut rest = d.trim();
+    while let Some(c) = rest.chars().next() {
+        rest = &rest[1..];
+        let end = rest.find(['M', 'L', 'Z']).unwrap_or(rest.len());
+        let args: Vec<f64> = rest[..end]
+            .split_whitespace()
+            .map(|v| v.parse().unwrap_or_else(|e| panic!("{v:?} in {d:?}: {e}")))
+            .collect();
+        rest = &rest[end..];
+        match c {
+            'M' => out.push((Vec::new(), false)),
+            'Z' => {
+                out.last_mut().expect("Z after M").1 = true;
+                continue;
+            }
+            'L' => assert!(!out.is_empty(), "L before M in {d:?}"),
+            _ => panic!("command {c} in {d:?}"),
+        }
+        assert_eq!(args.len(), 2, "{d:?}");
+        out.last_mut().unwrap().0.push([args[0], args[1]]);
+    }
+    out
+}
+
+/// `#rrggbb` of a colour.
+fn hex(c: Rgba) -> String {
+    format!("#{:02x}{:02x}{:02x}", c.r, c.g, c.b)
+}
+
+/// Asserts that the written corners are the pixel positions of `want`
+/// to the written precision (1/100 pixel, rounded).
+fn assert_corners(got: &[[f64; 2]], want: &[[f64; 2]], view: &View, what: &str) {
+    assert_eq!(got.len(), want.len(), "{what}: {got:?}");
+    for (g, w) in got.iter().zip(want) {
+        let p = view.to_pixel(*w);
+        assert!(
+            (g[0] - p[0]).abs() <= 0.005 + 1e-9 && (g[1] - p[1]).abs() <= 0.005 + 1e-9,
+            "{what}: written {g:?}, frame point {w:?} at pixel {p:?}"
+        );
+    }
+}
+
+/// The per-frame SVG files hold, layer by layer, what each frame is: the
+/// size and background, one translucent fill path per triangle through the
+/// frame's own points (mapped by the sequence's shared view), the onion
+/// ghosts of the first and last frames, the wireframe, the outline, and
+/// the spine and markers only where the frame has them.
 #[test]
-fn svg_frames_parse_as_xml() {
+fn svg_frames_write_each_frames_geometry_and_colours() {
     let dir = tempfile::tempdir().unwrap();
+    let style = Style::DEFAULT;
     let mut frames = squares(4);
     frames[1].spine = vec![0, 1];
     frames[1].markers = vec![[0.0, 0.0]];
-    let paths = write_svg_sequence(
-        &frames,
-        dir.path(),
-        &Style::DEFAULT,
-        &Output::DEFAULT,
-        &|_| {},
-    )
-    .unwrap();
+    let paths = write_svg_sequence(&frames, dir.path(), &style, &Output::DEFAULT, &|_| {}).unwrap();
     assert_eq!(paths.len(), 4);
-    for p in paths {
+    let view = View::fit(&frames, &style);
+    let corners_of = |f: &Frame, idx: &[u32]| -> Vec<[f64; 2]> {
+        idx.iter().map(|&i| f.points[i as usize]).collect()
+    };
+    for (k, (p, frame)) in paths.iter().zip(&frames).enumerate() {
+        assert_eq!(
+            p.file_name().unwrap().to_string_lossy(),
+            format!("frame_{k:04}.svg")
+        );
         let text = std::fs::read_to_string(p).unwrap();
         let doc = roxmltree::Document::parse(&text).unwrap();
-        assert_eq!(doc.root_element().tag_name().name(), "svg");
-        // Background, two translucent triangles, ghosts, wireframe, outline.
-        let fills = doc
-            .descendants()
-            .filter(|n| n.has_tag_name("g"))
-            .flat_map(|g| g.children().filter(|c| c.has_tag_name("path")))
-            .count();
-        assert_eq!(fills, 2);
+        let root = doc.root_element();
+        assert_eq!(root.tag_name().name(), "svg");
+        let (w, h) = (style.width, style.height);
+        assert_eq!(root.attribute("width"), Some(&*w.to_string()));
+        assert_eq!(root.attribute("height"), Some(&*h.to_string()));
+        assert_eq!(root.attribute("viewBox"), Some(&*format!("0 0 {w} {h}")));
+        let children: Vec<_> = root.children().filter(|n| n.is_element()).collect();
+
+        // Background.
+        assert!(children[0].has_tag_name("rect"), "frame {k}");
+        assert_eq!(children[0].attribute("fill"), Some(&*hex(style.background)));
+
+        // Fill: one translucent path per triangle, in order.
+        let g = children[1];
+        assert!(g.has_tag_name("g"), "frame {k}");
+        assert_eq!(g.attribute("fill"), Some(&*hex(style.fill)));
+        let alpha: f64 = g.attribute("fill-opacity").unwrap().parse().unwrap();
+        assert!((alpha - style.depth_opacity(1.0)).abs() <= 5e-4, "{alpha}");
+        let fills: Vec<_> = g.children().filter(|n| n.is_element()).collect();
+        assert_eq!(fills.len(), frame.triangles.len(), "frame {k}");
+        for (t, path) in frame.triangles.iter().zip(&fills) {
+            let sub = subpaths(path.attribute("d").unwrap());
+            assert_eq!(sub.len(), 1);
+            assert!(sub[0].1, "a triangle is closed");
+            assert_corners(&sub[0].0, &corners_of(frame, t), &view, "fill");
+        }
+
+        // Strokes after the fill, in drawing order: two onion ghosts
+        // (outlines of the first and last frames), the wireframe, the
+        // outline, then the spine where the frame has one.
+        let strokes: Vec<_> = children[2..]
+            .iter()
+            .filter(|n| n.has_tag_name("path"))
+            .collect();
+        let spine = !frame.spine.is_empty();
+        assert_eq!(strokes.len(), 4 + usize::from(spine), "frame {k}");
+        for s in &strokes {
+            assert_eq!(s.attribute("fill"), Some("none"));
+        }
+        for (s, ghost) in strokes[..2].iter().zip([&frames[0], &frames[3]]) {
+            assert_eq!(s.attribute("stroke"), Some(&*hex(style.onion_color)));
+            let sub = subpaths(s.attribute("d").unwrap());
+            assert_eq!(sub.len(), 1);
+            assert_corners(
+                &sub[0].0,
+                &corners_of(ghost, &ghost.outline),
+                &view,
+                "onion",
+            );
+        }
+        let wire = strokes[2];
+        assert_eq!(wire.attribute("stroke"), Some(&*hex(style.wireframe_color)));
+        assert_eq!(
+            wire.attribute("stroke-width"),
+            Some(&*style.wireframe_width.to_string())
+        );
+        let sub = subpaths(wire.attribute("d").unwrap());
+        assert_eq!(sub.len(), frame.triangles.len());
+        for (t, (c, closed)) in frame.triangles.iter().zip(&sub) {
+            assert!(closed);
+            assert_corners(c, &corners_of(frame, t), &view, "wireframe");
+        }
+        let outline = strokes[3];
+        assert_eq!(outline.attribute("id"), Some(immerse_render::OUTLINE_ID));
+        assert_eq!(outline.attribute("stroke"), Some(&*hex(style.outline)));
+        let sub = subpaths(outline.attribute("d").unwrap());
+        assert_eq!(sub.len(), 1);
+        assert!(sub[0].1);
+        assert_corners(
+            &sub[0].0,
+            &corners_of(frame, &frame.outline),
+            &view,
+            "outline",
+        );
+        if spine {
+            let s = strokes[4];
+            assert_eq!(s.attribute("stroke"), Some(&*hex(style.spine_color)));
+            let centroid = |t: u32| {
+                let c = corners_of(frame, &frame.triangles[t as usize]);
+                [
+                    (c[0][0] + c[1][0] + c[2][0]) / 3.0,
+                    (c[0][1] + c[1][1] + c[2][1]) / 3.0,
+                ]
+            };
+            let want: Vec<[f64; 2]> = frame.spine.iter().map(|&t| centroid(t)).collect();
+            let sub = subpaths(s.attribute("d").unwrap());
+            assert_eq!(sub.len(), 1);
+            assert!(!sub[0].1, "the spine is open");
+            assert_corners(&sub[0].0, &want, &view, "spine");
+        }
+
+        // Markers: one circle each, where the frame has them.
+        let circles: Vec<_> = children
+            .iter()
+            .filter(|n| n.has_tag_name("circle"))
+            .collect();
+        assert_eq!(circles.len(), frame.markers.len(), "frame {k}");
+        for (c, m) in circles.iter().zip(&frame.markers) {
+            let at = [
+                c.attribute("cx").unwrap().parse::<f64>().unwrap(),
+                c.attribute("cy").unwrap().parse::<f64>().unwrap(),
+            ];
+            assert_corners(&[at], &[*m], &view, "marker");
+            assert_eq!(c.attribute("fill"), Some(&*hex(style.marker_color)));
+            assert_eq!(c.attribute("r"), Some(&*style.marker_radius.to_string()));
+        }
     }
 }
 

@@ -25,6 +25,7 @@ use immerse::immersion::{check, triangulate};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use proptest::prelude::*;
+use testkit::Rng;
 
 type Q = BigRational;
 
@@ -417,26 +418,6 @@ fn checker(p: &[Point], qp: &[Point], tris: &[[u32; 3]]) -> Option<(Q, Q)> {
     first
 }
 
-/// A small deterministic generator.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn below(&mut self, k: u64) -> u64 {
-        self.next() % k
-    }
-}
-
 /// A star-shaped polygon: on a small grid (exact degeneracies) or in
 /// floating point.
 fn star(r: &mut Rng, n: usize, grid: bool) -> Vec<Point> {
@@ -548,7 +529,7 @@ fn in_bracket(lo: f64, hi: f64, x: &(Q, Q)) -> bool {
 
 #[test]
 fn the_certificate_agrees_with_the_independent_checker() {
-    let mut r = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut r = Rng::xorshift(0x9e37_79b9_7f4a_7c15);
     let (mut certified, mut rejected, mut exact_used) = (0, 0, 0);
     let mut families_failed_inside = 0;
     // Fewer in the debug profile, where big rationals are slow.
@@ -817,7 +798,7 @@ proptest! {
     /// certified for f32 is a valid shape.
     #[test]
     fn margins_are_stronger_and_cover_an_f32_player(seed in any::<u64>(), s in 0.0f32..=1.0) {
-        let mut r = Rng(seed | 1);
+        let mut r = Rng::xorshift(seed | 1);
         if let Some((p, qp, tris)) = segment(&mut r) {
             let exact = certify_segment(&p, &qp, &tris, Player::Exact).unwrap();
             let f64p = certify_segment(&p, &qp, &tris, Player::F64).unwrap();
@@ -843,7 +824,7 @@ proptest! {
     /// certified, and the shape is valid at a point inside it.
     #[test]
     fn certified_below_the_first_failure(seed in any::<u64>(), frac in 0.0f64..1.0) {
-        let mut r = Rng(seed | 1);
+        let mut r = Rng::xorshift(seed | 1);
         if let Some((p, qp, tris)) = segment(&mut r) {
             let report = certify_segment(&p, &qp, &tris, Player::Exact).unwrap();
             if let Some(f) = report.failure {

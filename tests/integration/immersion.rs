@@ -8,26 +8,7 @@ use immerse::geom::Point;
 use immerse::geom::polygon::{Turning, triangle_angles, turning_number};
 use immerse::immersion::{NotSelfOverlapping, check, is_valid_triangle, triangulate};
 use immerse::quality::{Quality, improve, triangulate_maxmin, triangulate_with};
-
-/// Xorshift with a fixed seed: the tests are deterministic.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-
-    fn f(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn below(&mut self, k: usize) -> usize {
-        (self.next() % k as u64) as usize
-    }
-}
+use testkit::Rng;
 
 /// Every triangulation of the sub-polygon `i..=j` (chord `j–i`), as lists
 /// of triangles, memoised on `(i, j)`.
@@ -86,8 +67,8 @@ fn brute_force(points: &[Point]) -> Option<f64> {
 fn star(r: &mut Rng, n: usize, jitter: f64) -> Vec<Point> {
     (0..n)
         .map(|i| {
-            let a = (i as f64 + jitter * (r.f() - 0.5)) * std::f64::consts::TAU / n as f64;
-            let rad = 0.3 + 0.7 * r.f();
+            let a = (i as f64 + jitter * (r.unit() - 0.5)) * std::f64::consts::TAU / n as f64;
+            let rad = 0.3 + 0.7 * r.unit();
             Point::new(rad * a.cos(), rad * a.sin())
         })
         .collect()
@@ -108,7 +89,7 @@ fn spiral(r: &mut Rng, n: usize, turns: f64, noise: f64) -> Vec<Point> {
             .map(|i| at(i * half / (n - half).max(1), 1.0)),
     );
     for p in &mut pts {
-        *p += Point::new(r.f() - 0.5, r.f() - 0.5) * noise;
+        *p += Point::new(r.unit() - 0.5, r.unit() - 0.5) * noise;
     }
     pts
 }
@@ -123,22 +104,22 @@ fn oriented(mut pts: Vec<Point>) -> Vec<Point> {
 
 /// A mix of small polygons: random, grid (degenerate), star, spiral.
 fn small_polygon(r: &mut Rng, round: usize) -> Vec<Point> {
-    let n = 4 + r.below(7); // 4..=10
+    let n = 4 + r.index(7); // 4..=10
     match round % 6 {
-        0 => (0..n).map(|_| Point::new(r.f(), r.f())).collect(),
-        1 => oriented((0..n).map(|_| Point::new(r.f(), r.f())).collect()),
+        0 => (0..n).map(|_| Point::new(r.unit(), r.unit())).collect(),
+        1 => oriented((0..n).map(|_| Point::new(r.unit(), r.unit())).collect()),
         2 => oriented(
             (0..n)
-                .map(|_| Point::new(r.below(4) as f64, r.below(4) as f64))
+                .map(|_| Point::new(r.index(4) as f64, r.index(4) as f64))
                 .collect(),
         ),
         3 => star(r, n, 1.8),
         4 => {
-            let (turns, noise) = (0.8 + r.f(), 1.5 * r.f());
+            let (turns, noise) = (0.8 + r.unit(), 1.5 * r.unit());
             spiral(r, n.max(6), turns, noise)
         }
         _ => {
-            let (turns, noise) = (0.6 + 1.2 * r.f(), 3.0 * r.f());
+            let (turns, noise) = (0.6 + 1.2 * r.unit(), 3.0 * r.unit());
             oriented(spiral(r, n.max(6), turns, noise))
         }
     }
@@ -146,7 +127,7 @@ fn small_polygon(r: &mut Rng, round: usize) -> Vec<Point> {
 
 #[test]
 fn dp_agrees_with_exhaustive_search() {
-    let mut r = Rng(0x5eed_1234_abcd_ef01);
+    let mut r = Rng::xorshift(0x5eed_1234_abcd_ef01);
     let (mut positives, mut negatives, mut negatives_turning_one) = (0, 0, 0);
     for round in 0..4000 {
         let pts = small_polygon(&mut r, round);
@@ -181,7 +162,7 @@ fn dp_agrees_with_exhaustive_search() {
 
 #[test]
 fn every_quality_passes_the_check_and_maxmin_is_optimal() {
-    let mut r = Rng(0x0dd_ba11_c0ff_ee00);
+    let mut r = Rng::xorshift(0x0dd_ba11_c0ff_ee00);
     let mut compared = 0;
     for round in 0..2000 {
         let pts = small_polygon(&mut r, round);
@@ -215,7 +196,7 @@ fn every_quality_passes_the_check_and_maxmin_is_optimal() {
 
 #[test]
 fn larger_curves_keep_the_order_of_qualities() {
-    let mut r = Rng(77);
+    let mut r = Rng::xorshift(77);
     for n in [30, 60, 120] {
         let pts = spiral(&mut r, n, 1.6, 0.0);
         let any = triangulate(&pts).expect("spiral strip overlaps itself");
@@ -231,7 +212,7 @@ fn larger_curves_keep_the_order_of_qualities() {
 
 #[test]
 fn strange_inputs_never_panic_and_answers_pass_the_check() {
-    let mut r = Rng(0xbad_1dea);
+    let mut r = Rng::xorshift(0xbad_1dea);
     let specials = [
         f64::NAN,
         f64::INFINITY,
@@ -243,21 +224,21 @@ fn strange_inputs_never_panic_and_answers_pass_the_check() {
         f64::MIN_POSITIVE,
     ];
     for round in 0..3000 {
-        let n = r.below(12);
+        let n = r.index(12);
         let mut pts: Vec<Point> = Vec::with_capacity(n);
         for _ in 0..n {
-            let p = match r.below(6) {
+            let p = match r.index(6) {
                 // A near-duplicate of an earlier point, a few ulps away.
                 0 if !pts.is_empty() => {
-                    let q = pts[r.below(pts.len())];
+                    let q = pts[r.index(pts.len())];
                     Point::new(
-                        f64::from_bits(q.x.to_bits().wrapping_add(r.below(3) as u64)),
+                        f64::from_bits(q.x.to_bits().wrapping_add(r.index(3) as u64)),
                         q.y,
                     )
                 }
-                1 if round % 4 == 0 => Point::new(specials[r.below(specials.len())], r.f()),
-                2 => Point::new(r.below(3) as f64, r.below(3) as f64),
-                _ => Point::new(r.f(), r.f()),
+                1 if round % 4 == 0 => Point::new(specials[r.index(specials.len())], r.unit()),
+                2 => Point::new(r.index(3) as f64, r.index(3) as f64),
+                _ => Point::new(r.unit(), r.unit()),
             };
             pts.push(p);
         }
@@ -326,9 +307,9 @@ fn spade_cdt(points: &[Point]) -> Vec<[u32; 3]> {
 
 #[test]
 fn delaunay_flips_equal_spade_cdt_on_simple_polygons() {
-    let mut r = Rng(0xcd7_5eed);
+    let mut r = Rng::xorshift(0xcd7_5eed);
     for round in 0..300 {
-        let n = 5 + r.below(if round % 10 == 0 { 200 } else { 30 });
+        let n = 5 + r.index(if round % 10 == 0 { 200 } else { 30 });
         let pts = star(&mut r, n, 0.9);
         assert!(immerse::geom::polygon::is_simple(&pts));
         // The DP's witness flipped to Delaunay equals spade's CDT (the
@@ -447,12 +428,12 @@ fn reference_curve_labels_are_reproduced() {
 
 #[test]
 fn spirals_and_blobs_at_moderate_size_triangulate_to_checked_immersions() {
-    use crate::stress::harness::{Rng as StressRng, blob};
-    let mut r = Rng(2024);
+    use testkit::stress::blob;
+    let mut r = Rng::xorshift(2024);
     let curves = [
         spiral(&mut r, 1200, 1.6, 0.0),
         spiral(&mut r, 900, 2.4, 0.002),
-        blob(&mut StressRng::new(5, 1), 1000),
+        blob(&mut Rng::stream(5, 1), 1000),
     ];
     for pts in &curves {
         let any = triangulate(pts).expect("self-overlapping");
@@ -462,7 +443,7 @@ fn spirals_and_blobs_at_moderate_size_triangulate_to_checked_immersions() {
     }
     for pts in [
         spiral(&mut r, 300, 1.6, 0.001),
-        blob(&mut StressRng::new(6, 1), 250),
+        blob(&mut Rng::stream(6, 1), 250),
     ] {
         let opt = triangulate_maxmin(&pts).expect("self-overlapping");
         assert_eq!(check(&opt.points, &opt.triangles), Ok(()));

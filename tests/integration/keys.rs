@@ -3,14 +3,13 @@
 //! and animated SVG certify as written, the JSON's keyframes round trip
 //! through `immerse certify`, and the frames are evenly paced.
 
-use crate::morph::pairs;
 use crate::util::{curve, curves_dir, immerse, stderr};
 use immerse::certify::{Key, Player, certify_keys};
 use immerse::morph::{CurveMorphOptions, Tween};
 use immerse::{Curve, Point};
+use testkit::pairs;
 
-#[path = "../common/pacing.rs"]
-mod pacing;
+use testkit::pacing;
 
 fn tween(a: &str, b: &str, options: &CurveMorphOptions) -> Tween {
     let ca = Curve::from_path(curves_dir().join(a)).unwrap();

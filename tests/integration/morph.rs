@@ -10,9 +10,8 @@ use immerse::geom::Point;
 use immerse::immersion::check;
 use immerse::morph::{CurveMorphOptions, Tween, morph_curves};
 
-#[path = "../common/pairs.rs"]
-pub(crate) mod pairs;
 use pairs::reference_pairs;
+use testkit::pairs;
 
 fn load(name: &str) -> Curve {
     Curve::from_path(curve(name)).unwrap_or_else(|e| panic!("{e}"))

@@ -5,22 +5,18 @@
 //! correspondence; every frame must pass the exact immersion check and the
 //! end frames must be the inputs.
 //!
-//! The generators and the pair driver live in `tests/common/stress.rs`,
+//! The generators and the pair driver live in `testkit/src/stress.rs`,
 //! shared with the long run (`cargo run --release --example stress --
 //! --pairs 10000`). The short run here is
 //! [`stress_short_random_pairs_all_morph`]; shrunk failures found by the
 //! long run are kept in `tests/stress-regressions/` and replayed by
 //! [`stress_regressions_all_morph`].
 
-#[path = "../common/stress.rs"]
-#[allow(
-    dead_code,
-    reason = "the shrinker and the long run's reports are used by examples/stress.rs only"
-)]
-pub(crate) mod harness;
+use testkit::Rng;
+use testkit::stress as harness;
 
 use harness::{
-    DEFAULT_SEED, Generator, Pair, Rng, generate, pair, read_curve, regression_files, run_pair,
+    DEFAULT_SEED, Generator, Pair, generate, pair, read_curve, regression_files, run_pair,
     run_pairs, thinnest_degrees,
 };
 use immerse::geom::polygon::is_simple;
@@ -47,14 +43,7 @@ fn shortest_edge(p: &[Point]) -> f64 {
 }
 
 fn extent(p: &[Point]) -> f64 {
-    let lo = p
-        .iter()
-        .copied()
-        .fold(Point::splat(f64::INFINITY), Point::min);
-    let hi = p
-        .iter()
-        .copied()
-        .fold(Point::splat(f64::NEG_INFINITY), Point::max);
+    let (lo, hi) = testkit::shapes::bounds(p);
     (hi - lo).max_element()
 }
 
@@ -71,7 +60,7 @@ fn thinness(p: &[Point]) -> f64 {
 /// crossings and sizes.
 #[test]
 fn stress_generators_make_self_overlapping_curves() {
-    let mut rng = Rng::new(DEFAULT_SEED, 0xcafe);
+    let mut rng = Rng::stream(DEFAULT_SEED, 0xcafe);
     let mut total_discards = 0usize;
     let mut total = 0usize;
     for g in Generator::ALL {

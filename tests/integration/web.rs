@@ -9,9 +9,13 @@ use std::net::TcpStream;
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-#[path = "../common/serve.rs"]
-mod serve;
-use serve::{Server, error_of, raw_request, read_response};
+use testkit::serve::{Server, error_of, raw_request, read_response};
+
+/// `immerse serve --port 0` of this package's binary with `extra`
+/// arguments, stderr discarded.
+fn start(extra: &[&str]) -> Server {
+    Server::start_with(env!("CARGO_BIN_EXE_immerse"), extra, false)
+}
 
 /// The points of a curve file of `curves/` (JSON files only).
 fn points_of(name: &str) -> serde_json::Value {
@@ -50,7 +54,7 @@ fn send(port: u16, head: &str, body: &[u8]) -> TcpStream {
 
 #[test]
 fn serve_morphs_like_the_cli_and_serves_the_page() {
-    let server = Server::start(&[]);
+    let server = start(&[]);
     let (status, page) = server.get("/");
     assert_eq!(status, 200);
     assert!(String::from_utf8_lossy(&page).contains("immerse playground"));
@@ -227,7 +231,7 @@ fn serve_morphs_like_the_cli_and_serves_the_page() {
 
 #[test]
 fn serve_bounds_requests_with_json_errors() {
-    let server = Server::start(&[]);
+    let server = start(&[]);
     let [a, b] = pair();
     let port = server.port;
 
@@ -446,7 +450,7 @@ fn serve_bounds_requests_with_json_errors() {
 /// holds the slot.
 #[test]
 fn serve_waits_for_job_slots_within_the_time_limits() {
-    let server = Server::start(&[
+    let server = start(&[
         "--max-jobs",
         "1",
         "--job-timeout",
@@ -508,7 +512,7 @@ fn serve_waits_for_job_slots_within_the_time_limits() {
 /// where the whole GIF would take half a minute.
 #[test]
 fn serve_stops_renders_past_their_time_or_without_a_client() {
-    let server = Server::start(&["--max-jobs", "1", "--job-timeout", "2"]);
+    let server = start(&["--max-jobs", "1", "--job-timeout", "2"]);
     let job = slow_gif_job(&server);
     let gif = job["urls"]["gif"].as_str().unwrap();
     let t = Instant::now();
@@ -542,7 +546,7 @@ fn serve_stops_renders_past_their_time_or_without_a_client() {
     }
     drop(server);
 
-    let server = Server::start(&["--max-jobs", "1", "--job-timeout", "120"]);
+    let server = start(&["--max-jobs", "1", "--job-timeout", "120"]);
     let job = slow_gif_job(&server);
     let gif = job["urls"]["gif"].as_str().unwrap();
     let client = send(server.port, &server.head("GET", gif, None), b"");
@@ -572,7 +576,7 @@ fn serve_stops_renders_past_their_time_or_without_a_client() {
 #[cfg(unix)]
 #[test]
 fn serve_drains_on_ctrl_c() {
-    let mut server = Server::start(&[]);
+    let mut server = start(&[]);
     let port = server.port;
     let body = serde_json::json!({"points": pair()[0]}).to_string();
     let head = server.head("POST", "/api/check", Some(body.len()));
@@ -622,7 +626,7 @@ fn serve_drains_on_ctrl_c() {
 /// line's values, and the server morphs with each of them.
 #[test]
 fn the_options_offer_every_path_and_rule_and_the_server_takes_them() {
-    let server = Server::start(&[]);
+    let server = start(&[]);
     let (status, options) = server.get("/api/options");
     assert_eq!(status, 200);
     let options: serde_json::Value = serde_json::from_slice(&options).unwrap();

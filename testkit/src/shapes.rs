@@ -1,15 +1,23 @@
-//! Curves that the benchmarks and examples generate (`#[path]`-included),
-//! so that every table measures the same shapes.
+//! Curves that the tests, benchmarks and examples generate, so that every
+//! table measures the same shapes.
 
-use immerse::Point;
+use immerse_base::geom::Point;
 use std::f64::consts::TAU;
+
+/// The least and greatest corner of the bounding box of `points`
+/// (infinite corners for no points).
+pub fn bounds(points: &[Point]) -> (Point, Point) {
+    points.iter().fold(
+        (Point::splat(f64::INFINITY), Point::splat(f64::NEG_INFINITY)),
+        |(lo, hi), &p| (lo.min(p), hi.max(p)),
+    )
+}
 
 /// A spiral strip of `m` stations curling `turns` times with the given
 /// width (outer edge out, inner edge back, n = 2m vertices) and its zigzag
 /// triangulation: an immersed disk for any number of turns; it overlaps
 /// itself once the width is more than the radius gained in a turn (0.12).
-#[allow(dead_code, reason = "not every includer uses every shape")]
-pub(crate) fn spiral_strip(m: usize, turns: f64, width: f64) -> (Vec<Point>, Vec<[u32; 3]>) {
+pub fn spiral_strip(m: usize, turns: f64, width: f64) -> (Vec<Point>, Vec<[u32; 3]>) {
     let station = |i: usize| {
         let th = turns * TAU * i as f64 / (m - 1) as f64;
         (th, 1.0 + 0.12 * th / TAU)
@@ -34,8 +42,7 @@ pub(crate) fn spiral_strip(m: usize, turns: f64, width: f64) -> (Vec<Point>, Vec
 /// A wide spiral strip of `n` vertices (n even) turning `turns` times
 /// whose turns do not touch (a simple polygon): the decision DP's
 /// benchmark shape.
-#[allow(dead_code, reason = "not every includer uses every shape")]
-pub(crate) fn wide_spiral(n: usize, turns: f64) -> Vec<Point> {
+pub fn wide_spiral(n: usize, turns: f64) -> Vec<Point> {
     let half = n / 2;
     let at = |i: usize, r0: f64| {
         let a = i as f64 / (half - 1) as f64 * turns * TAU;

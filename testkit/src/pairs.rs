@@ -1,25 +1,20 @@
 //! The pair lists of `curves/` (`reference-pairs.list`,
-//! `motion-pairs.list`), shared by the morph tests and the examples
-//! (`#[path]`-included).
+//! `motion-pairs.list`), shared by the morph tests and the examples.
 
 /// The pairs of `curves/reference-pairs.list` ("source target" per line,
 /// `#` comments).
-#[allow(dead_code, reason = "not every includer reads both lists")]
-pub(crate) fn reference_pairs() -> Vec<(String, String)> {
+pub fn reference_pairs() -> Vec<(String, String)> {
     pair_list("reference-pairs.list")
 }
 
 /// The pairs of `curves/motion-pairs.list`: self-overlapping pairs for
 /// measuring motion (detour, unwind).
-#[allow(dead_code, reason = "not every includer reads both lists")]
-pub(crate) fn motion_pairs() -> Vec<(String, String)> {
+pub fn motion_pairs() -> Vec<(String, String)> {
     pair_list("motion-pairs.list")
 }
 
 fn pair_list(name: &str) -> Vec<(String, String)> {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("curves")
-        .join(name);
+    let path = crate::workspace_root().join("curves").join(name);
     let text = std::fs::read_to_string(&path)
         .unwrap_or_else(|e| panic!("{} is not readable: {e}", path.display()));
     text.lines()

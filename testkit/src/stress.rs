@@ -2,13 +2,13 @@
 //! curves, the pair driver that morphs two of them and checks every frame
 //! exactly, the regression-file format and a small shrinker.
 //!
-//! One copy, shared by the integration tests (`tests/integration/stress.rs`)
-//! and the long-run driver (`examples/stress.rs`), both of which include
-//! this file with `#[path]`.
+//! One copy, shared by the integration tests (`tests/integration/stress.rs`),
+//! the long-run driver (`examples/stress.rs`) and the examples that draw
+//! stress curves (`motion_view`, `bench_dp`).
 //!
 //! Everything is reproducible from `(seed, pair index)` alone: pair `i`
-//! draws from its own random stream, so pairs can be run in any order, in
-//! parallel, or one at a time.
+//! draws from its own random stream ([`Rng::stream`]), so pairs can be run
+//! in any order, in parallel, or one at a time.
 //!
 //! Every generated curve goes through the same reading path as a user's
 //! file: its points are written as JSON and read back with
@@ -16,6 +16,8 @@
 //! and it is kept only when [`immerse::immersion::triangulate`] says it is
 //! self-overlapping. Outputs that are not are counted as discards.
 
+use crate::Rng;
+use crate::shapes::bounds;
 use immerse::Curve;
 use immerse::geom::Point;
 use immerse::geom::polygon::triangle_angles;
@@ -29,83 +31,29 @@ use std::f64::consts::{PI, TAU};
 use std::fmt::Write as _;
 
 /// The default seed of the stress runs (the short test and the long run).
-pub(crate) const DEFAULT_SEED: u64 = 0x1717_5eed;
+pub const DEFAULT_SEED: u64 = 0x1717_5eed;
 
 /// Largest curve the generators aim for (after cleaning a curve can only
 /// get smaller).
-pub(crate) const MAX_SIZE: usize = 200;
+pub const MAX_SIZE: usize = 200;
 
 /// The max–min-angle triangulation is O(n³): pairs with more vertices
 /// than this (after equalising counts) use `any` or `delaunay` instead.
-pub(crate) const MAX_MAXMIN_SIZE: usize = 150;
+pub const MAX_MAXMIN_SIZE: usize = 150;
 
 /// Folder of shrunk failing pairs that `stress_regressions_all_morph`
 /// replays, relative to the package root.
-pub(crate) const REGRESSION_DIR: &str = "tests/stress-regressions";
+pub const REGRESSION_DIR: &str = "tests/stress-regressions";
 
 // ---------------------------------------------------------------------
 // Random numbers
 
-/// SplitMix64: tiny, fast, and fully determined by its 64-bit state, so a
-/// pair is reproducible from its index without any dependency.
-#[derive(Clone, Debug)]
-pub(crate) struct Rng(u64);
-
-impl Rng {
-    /// A stream for `(seed, index)`.
-    pub(crate) fn new(seed: u64, index: u64) -> Rng {
-        let mut r = Rng(seed ^ index.wrapping_mul(0xA076_1D64_78BD_642F));
-        r.next_u64();
-        r.next_u64();
-        r
-    }
-
-    /// The next 64 random bits.
-    pub(crate) fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1).
-    pub(crate) fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Uniform in [lo, hi).
-    pub(crate) fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    /// 10^u with u uniform in [lo, hi): log-uniform between 10^lo and 10^hi.
-    pub(crate) fn pow10(&mut self, lo: f64, hi: f64) -> f64 {
-        10f64.powf(self.range(lo, hi))
-    }
-
-    /// Uniform integer in [lo, hi] (inclusive).
-    pub(crate) fn int(&mut self, lo: usize, hi: usize) -> usize {
-        lo + (self.next_u64() % (hi - lo + 1) as u64) as usize
-    }
-
-    /// True with probability `p`.
-    pub(crate) fn chance(&mut self, p: f64) -> bool {
-        self.unit() < p
-    }
-
-    /// One element of `items`.
-    pub(crate) fn pick<T: Copy>(&mut self, items: &[T]) -> T {
-        items[self.int(0, items.len() - 1)]
-    }
-
-    /// A size from 3 to `MAX_SIZE`, log-uniform (small curves are common,
-    /// large ones appear often enough).
-    pub(crate) fn size(&mut self) -> usize {
-        let lo = 3f64.ln();
-        let hi = (MAX_SIZE as f64 + 1.0).ln();
-        (self.range(lo, hi).exp().floor() as usize).clamp(3, MAX_SIZE)
-    }
+/// A size from 3 to [`MAX_SIZE`], log-uniform (small curves are common,
+/// large ones appear often enough).
+pub fn size(rng: &mut Rng) -> usize {
+    let lo = 3f64.ln();
+    let hi = (MAX_SIZE as f64 + 1.0).ln();
+    (rng.range(lo, hi).exp().floor() as usize).clamp(3, MAX_SIZE)
 }
 
 // ---------------------------------------------------------------------
@@ -113,7 +61,7 @@ impl Rng {
 
 /// A family of self-overlapping curves.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub(crate) enum Generator {
+pub enum Generator {
     /// A thin triangle: height 1e-9..1e-3 of its length, apex anywhere
     /// above (or beyond) the base; sometimes with points on its edges.
     Wedge,
@@ -148,7 +96,7 @@ pub(crate) enum Generator {
 
 impl Generator {
     /// Every generator.
-    pub(crate) const ALL: [Generator; 11] = [
+    pub const ALL: [Generator; 11] = [
         Generator::Wedge,
         Generator::Strip,
         Generator::ThinSpiral,
@@ -163,7 +111,7 @@ impl Generator {
     ];
 
     /// A short name.
-    pub(crate) fn as_str(self) -> &'static str {
+    pub fn as_str(self) -> &'static str {
         match self {
             Generator::Wedge => "wedge",
             Generator::Strip => "strip",
@@ -180,7 +128,7 @@ impl Generator {
     }
 
     /// The generator of this name.
-    pub(crate) fn from_name(name: &str) -> Option<Generator> {
+    pub fn from_name(name: &str) -> Option<Generator> {
         Generator::ALL.into_iter().find(|g| g.as_str() == name)
     }
 
@@ -403,7 +351,7 @@ fn curl(rng: &mut Rng, n: usize, turn_deg: (f64, f64), width: Width) -> Raw {
 }
 
 /// A star-shaped blob: r(φ) = 1 + Σ a_k cos(kφ + p_k) at jittered angles.
-pub(crate) fn blob(rng: &mut Rng, n: usize) -> Vec<Point> {
+pub fn blob(rng: &mut Rng, n: usize) -> Vec<Point> {
     let harmonics: Vec<(f64, f64, f64)> = (2..=6)
         .map(|k| {
             let k = k as f64;
@@ -583,14 +531,7 @@ fn short_edge(rng: &mut Rng, n: usize) -> Raw {
 fn transform(rng: &mut Rng, raw: Raw) -> Vec<Point> {
     let mut p = raw.points;
     // The bounding box, to scale and place the curve by its size.
-    let lo = p
-        .iter()
-        .copied()
-        .fold(Point::splat(f64::INFINITY), Point::min);
-    let hi = p
-        .iter()
-        .copied()
-        .fold(Point::splat(f64::NEG_INFINITY), Point::max);
+    let (lo, hi) = bounds(&p);
     let exact = raw.grid || rng.chance(0.2);
     let mirror = rng.chance(0.25);
     if exact {
@@ -647,14 +588,14 @@ fn transform(rng: &mut Rng, raw: Raw) -> Vec<Point> {
 }
 
 /// The points as a user's JSON curve file.
-pub(crate) fn curve_json(name: &str, points: &[Point]) -> String {
+pub fn curve_json(name: &str, points: &[Point]) -> String {
     let xy: Vec<[f64; 2]> = points.iter().map(|p| [p.x, p.y]).collect();
     serde_json::json!({ "name": name, "points": xy }).to_string()
 }
 
 /// Reads points as a user's file would be read (cleaning, range checks,
 /// orientation) and keeps them only when they are self-overlapping.
-pub(crate) fn read_curve(name: &str, points: &[Point]) -> Result<Vec<Point>, String> {
+pub fn read_curve(name: &str, points: &[Point]) -> Result<Vec<Point>, String> {
     let curve = Curve::from_json_str(&curve_json(name, points), "stress.json")
         .map_err(|e| e.to_string())?;
     triangulate(&curve.points).map_err(|e| e.to_string())?;
@@ -663,30 +604,30 @@ pub(crate) fn read_curve(name: &str, points: &[Point]) -> Result<Vec<Point>, Str
 
 /// Why a generator's output was discarded.
 #[derive(Clone, Debug)]
-pub(crate) struct Discard {
+pub struct Discard {
     /// The generator.
-    pub(crate) generator: Generator,
+    pub generator: Generator,
     /// The reader's or the triangulator's message.
-    pub(crate) reason: String,
+    pub reason: String,
 }
 
 /// A generated, cleaned, oriented, self-overlapping curve.
 #[derive(Clone, Debug)]
-pub(crate) struct Generated {
+pub struct Generated {
     /// Which family.
-    pub(crate) generator: Generator,
+    pub generator: Generator,
     /// The points, as read back.
-    pub(crate) points: Vec<Point>,
+    pub points: Vec<Point>,
     /// Outputs thrown away before this one (by any generator).
-    pub(crate) discards: Vec<Discard>,
+    pub discards: Vec<Discard>,
 }
 
 /// Draws one curve of family `generator`: retries (counting discards)
 /// until one is self-overlapping; `None` after 40 failed attempts.
-pub(crate) fn generate(rng: &mut Rng, generator: Generator) -> (Option<Vec<Point>>, Vec<Discard>) {
+pub fn generate(rng: &mut Rng, generator: Generator) -> (Option<Vec<Point>>, Vec<Discard>) {
     let mut discards = Vec::new();
     for _ in 0..40 {
-        let n = rng.size();
+        let n = size(rng);
         let raw = generator.raw(rng, n);
         let points = transform(rng, raw);
         match read_curve(generator.as_str(), &points) {
@@ -698,7 +639,7 @@ pub(crate) fn generate(rng: &mut Rng, generator: Generator) -> (Option<Vec<Point
 }
 
 /// Draws one curve from a random family.
-pub(crate) fn draw_curve(rng: &mut Rng) -> Generated {
+pub fn draw_curve(rng: &mut Rng) -> Generated {
     let mut all = Vec::new();
     loop {
         let generator = rng.pick(&Generator::ALL);
@@ -719,21 +660,21 @@ pub(crate) fn draw_curve(rng: &mut Rng) -> Generated {
 
 /// The options of one pair, by their command-line names.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct PairOptions {
+pub struct PairOptions {
     /// `--quality`.
-    pub(crate) quality: Quality,
+    pub quality: Quality,
     /// `--counts`.
-    pub(crate) counts: Counts,
+    pub counts: Counts,
     /// `--intermediate`.
-    pub(crate) intermediate: Intermediate,
+    pub intermediate: Intermediate,
     /// `--correspondence`.
-    pub(crate) correspondence: Correspondence,
+    pub correspondence: Correspondence,
     /// Number of frames, evenly spaced in [0, 1] (at least 2).
-    pub(crate) frames: usize,
+    pub frames: usize,
 }
 
 /// `--counts` name.
-pub(crate) fn counts_name(c: Counts) -> &'static str {
+pub fn counts_name(c: Counts) -> &'static str {
     match c {
         Counts::Insert => "insert",
         Counts::Resample => "resample",
@@ -742,7 +683,7 @@ pub(crate) fn counts_name(c: Counts) -> &'static str {
 
 impl PairOptions {
     /// The library options.
-    pub(crate) fn curve_options(&self) -> CurveMorphOptions {
+    pub fn curve_options(&self) -> CurveMorphOptions {
         CurveMorphOptions::DEFAULT
             .with_quality(self.quality)
             .with_counts(self.counts)
@@ -751,13 +692,13 @@ impl PairOptions {
     }
 
     /// The frame parameters.
-    pub(crate) fn fractions(&self) -> Vec<f64> {
+    pub fn fractions(&self) -> Vec<f64> {
         let k = self.frames.max(2);
         (0..k).map(|i| i as f64 / (k - 1) as f64).collect()
     }
 
     /// As JSON.
-    pub(crate) fn to_json(self) -> serde_json::Value {
+    pub fn to_json(self) -> serde_json::Value {
         serde_json::json!({
             "quality": self.quality.as_str(),
             "counts": counts_name(self.counts),
@@ -768,7 +709,7 @@ impl PairOptions {
     }
 
     /// From JSON (as [`PairOptions::to_json`] writes).
-    pub(crate) fn from_json(v: &serde_json::Value) -> Result<PairOptions, String> {
+    pub fn from_json(v: &serde_json::Value) -> Result<PairOptions, String> {
         let s = |k: &str| {
             v[k].as_str()
                 .ok_or_else(|| format!("options.{k}: expected a string"))
@@ -802,7 +743,7 @@ impl PairOptions {
     }
 
     /// One line for humans.
-    pub(crate) fn label(&self) -> String {
+    pub fn label(&self) -> String {
         format!(
             "--quality {} --counts {} --intermediate {} --correspondence {} --frames {}",
             self.quality,
@@ -816,26 +757,26 @@ impl PairOptions {
 
 /// One stress pair: two curves and the options to morph them with.
 #[derive(Clone, Debug)]
-pub(crate) struct Pair {
+pub struct Pair {
     /// Seed of the run (`None` for a pair read from a file).
-    pub(crate) seed: Option<u64>,
+    pub seed: Option<u64>,
     /// Index of the pair in its run.
-    pub(crate) index: u64,
+    pub index: u64,
     /// Families of source and target (`None` when unknown).
-    pub(crate) generators: [Option<Generator>; 2],
+    pub generators: [Option<Generator>; 2],
     /// The source curve (cleaned, oriented).
-    pub(crate) source: Vec<Point>,
+    pub source: Vec<Point>,
     /// The target curve (cleaned, oriented).
-    pub(crate) target: Vec<Point>,
+    pub target: Vec<Point>,
     /// The options.
-    pub(crate) options: PairOptions,
+    pub options: PairOptions,
     /// Generator outputs discarded while drawing this pair.
-    pub(crate) discards: Vec<Discard>,
+    pub discards: Vec<Discard>,
 }
 
 /// Pair `index` of the run with `seed`.
-pub(crate) fn pair(seed: u64, index: u64) -> Pair {
-    let mut rng = Rng::new(seed, index);
+pub fn pair(seed: u64, index: u64) -> Pair {
+    let mut rng = Rng::stream(seed, index);
     let a = draw_curve(&mut rng);
     let b = draw_curve(&mut rng);
     let n = a.points.len().max(b.points.len());
@@ -882,7 +823,7 @@ fn points_from_json(v: &serde_json::Value, what: &str) -> Result<Vec<Point>, Str
 
 impl Pair {
     /// Which pair this is, for messages.
-    pub(crate) fn name(&self) -> String {
+    pub fn name(&self) -> String {
         let g = |g: Option<Generator>| g.map_or("?", Generator::as_str);
         match self.seed {
             Some(seed) => format!(
@@ -901,7 +842,7 @@ impl Pair {
     }
 
     /// The regression-file form: everything needed to replay the pair.
-    pub(crate) fn to_json(&self, error: Option<&str>) -> serde_json::Value {
+    pub fn to_json(&self, error: Option<&str>) -> serde_json::Value {
         let g = |g: Option<Generator>| g.map(Generator::as_str);
         serde_json::json!({
             "seed": self.seed.map(|s| format!("{s:#x}")),
@@ -915,7 +856,7 @@ impl Pair {
     }
 
     /// The regression-file text: [`Pair::to_json`] with one point per line.
-    pub(crate) fn to_file_text(&self, error: Option<&str>) -> String {
+    pub fn to_file_text(&self, error: Option<&str>) -> String {
         let v = self.to_json(error);
         let mut s = String::from("{\n");
         for key in ["seed", "pair", "generators", "error", "options"] {
@@ -935,7 +876,7 @@ impl Pair {
 
     /// Reads the form [`Pair::to_json`] writes. The curves are read again
     /// as user files are (cleaning, orientation).
-    pub(crate) fn from_json(text: &str) -> Result<Pair, String> {
+    pub fn from_json(text: &str) -> Result<Pair, String> {
         let v: serde_json::Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
         let seed = match v["seed"].as_str() {
             Some(s) => Some(
@@ -967,12 +908,12 @@ impl Pair {
 
 /// What went wrong with a pair.
 #[derive(Clone, Debug, PartialEq)]
-pub(crate) struct Failure {
+pub struct Failure {
     /// A short class of the failure: the message with its numbers replaced
     /// by `#`, so that failures of one kind group together.
-    pub(crate) category: String,
+    pub category: String,
     /// The full message.
-    pub(crate) message: String,
+    pub message: String,
 }
 
 impl Failure {
@@ -986,7 +927,7 @@ impl Failure {
 
 /// The message with every number (and every run of digits inside a word)
 /// replaced by `#` and long lists cut, for grouping.
-pub(crate) fn normalise(message: &str) -> String {
+pub fn normalise(message: &str) -> String {
     let mut out = String::new();
     let mut chars = message.chars().peekable();
     while let Some(c) = chars.next() {
@@ -1015,11 +956,11 @@ pub(crate) fn normalise(message: &str) -> String {
 
 /// What a passing pair reports.
 #[derive(Clone, Debug)]
-pub(crate) struct Outcome {
+pub struct Outcome {
     /// Vertices after equalising counts.
-    pub(crate) n: usize,
+    pub n: usize,
     /// The library's report.
-    pub(crate) report: MorphReport,
+    pub report: MorphReport,
 }
 
 /// Why `frame` does not run along the closed polyline `outline` in order
@@ -1077,7 +1018,7 @@ fn holds_in_order(frame: &[Point], original: &[Point], start: usize) -> bool {
 }
 
 /// The text of a panic payload.
-pub(crate) fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
     if let Some(s) = payload.downcast_ref::<&str>() {
         (*s).to_string()
     } else if let Some(s) = payload.downcast_ref::<String>() {
@@ -1093,7 +1034,7 @@ pub(crate) fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
 /// source's own vertices appear exactly, in cyclic order, from vertex 0)
 /// and the last is the target after count equalisation, shifted by the
 /// reported correspondence. A panic is caught and reported as a failure.
-pub(crate) fn run_pair(pair: &Pair) -> Result<Outcome, Failure> {
+pub fn run_pair(pair: &Pair) -> Result<Outcome, Failure> {
     let options = pair.options.curve_options();
     let fractions = pair.options.fractions();
     let (a, b) = (&pair.source, &pair.target);
@@ -1170,32 +1111,32 @@ pub(crate) fn run_pair(pair: &Pair) -> Result<Outcome, Failure> {
 
 /// One pair's result, without its curves.
 #[derive(Clone, Debug)]
-pub(crate) struct Row {
+pub struct Row {
     /// The pair's index.
-    pub(crate) index: u64,
+    pub index: u64,
     /// Families of source and target.
-    pub(crate) generators: [Option<Generator>; 2],
+    pub generators: [Option<Generator>; 2],
     /// Its options.
-    pub(crate) options: PairOptions,
+    pub options: PairOptions,
     /// Vertices of the larger curve.
-    pub(crate) n: usize,
+    pub n: usize,
     /// Wall time of the morph and its checks, in seconds.
-    pub(crate) seconds: f64,
+    pub seconds: f64,
     /// The failure's category, if it failed.
-    pub(crate) failed: Option<String>,
+    pub failed: Option<String>,
 }
 
 /// The result of a run.
 #[derive(Debug, Default)]
-pub(crate) struct Summary {
+pub struct Summary {
     /// Every pair, in index order.
-    pub(crate) rows: Vec<Row>,
+    pub rows: Vec<Row>,
     /// The failing pairs and why, in index order.
-    pub(crate) failures: Vec<(Pair, Failure)>,
+    pub failures: Vec<(Pair, Failure)>,
     /// Generator outputs kept and discarded, by generator.
-    pub(crate) generated: std::collections::BTreeMap<Generator, (usize, usize)>,
+    pub generated: std::collections::BTreeMap<Generator, (usize, usize)>,
     /// Discard reasons (normalised) and how often.
-    pub(crate) discard_reasons: std::collections::BTreeMap<String, usize>,
+    pub discard_reasons: std::collections::BTreeMap<String, usize>,
 }
 
 /// A table of failures over totals, grouped by `key`.
@@ -1221,7 +1162,7 @@ fn tally(rows: &[Row], title: &str, key: impl Fn(&Row) -> Vec<String>) -> String
 
 impl Summary {
     /// One line: failures, pairs, discards.
-    pub(crate) fn headline(&self) -> String {
+    pub fn headline(&self) -> String {
         format!(
             "{} of {} pairs failed; {:.2}% of generated curves discarded",
             self.failures.len(),
@@ -1231,12 +1172,12 @@ impl Summary {
     }
 
     /// Pairs run.
-    pub(crate) fn total(&self) -> usize {
+    pub fn total(&self) -> usize {
         self.rows.len()
     }
 
     /// Discarded outputs over all outputs.
-    pub(crate) fn discard_rate(&self) -> f64 {
+    pub fn discard_rate(&self) -> f64 {
         let (kept, dropped) = self
             .generated
             .values()
@@ -1245,7 +1186,7 @@ impl Summary {
     }
 
     /// Per-pair wall times, sorted.
-    pub(crate) fn sorted_seconds(&self) -> Vec<f64> {
+    pub fn sorted_seconds(&self) -> Vec<f64> {
         let mut t: Vec<f64> = self.rows.iter().map(|r| r.seconds).collect();
         t.sort_by(f64::total_cmp);
         t
@@ -1253,7 +1194,7 @@ impl Summary {
 
     /// A report: counts, discards, failures by category, generator and
     /// option, and (up to `show`) failing pairs as JSON.
-    pub(crate) fn report(&self, show: usize) -> String {
+    pub fn report(&self, show: usize) -> String {
         use std::collections::BTreeMap;
         let mut s = String::new();
         // Every failure on one line (the index reproduces it), the first
@@ -1338,7 +1279,7 @@ impl Summary {
 impl Summary {
     /// Failures over totals for every generator (either curve of the pair)
     /// against every combination of `--counts` and `--intermediate`.
-    pub(crate) fn matrix(&self) -> String {
+    pub fn matrix(&self) -> String {
         let combos = [
             (Counts::Insert, Intermediate::Target),
             (Counts::Insert, Intermediate::Disk),
@@ -1374,7 +1315,7 @@ impl Summary {
 
     /// For each failure category, how many failing pairs involve each
     /// generator.
-    pub(crate) fn categories_by_generator(&self) -> String {
+    pub fn categories_by_generator(&self) -> String {
         use std::collections::BTreeMap;
         let mut m: BTreeMap<&str, BTreeMap<&str, usize>> = BTreeMap::new();
         for r in &self.rows {
@@ -1403,12 +1344,12 @@ impl Summary {
 
 /// Called with a pair's index when it starts (`None`) and ends (its
 /// result).
-pub(crate) type Progress<'a> = dyn Fn(u64, Option<&Result<Outcome, Failure>>) + Sync + 'a;
+pub type Progress<'a> = dyn Fn(u64, Option<&Result<Outcome, Failure>>) + Sync + 'a;
 
 /// Runs pairs `start..start + count` of the run with `seed`, in parallel
 /// (rayon), and collects every failure. `each` is called when a pair
 /// starts (with `None`) and when it ends (for progress and watchdogs).
-pub(crate) fn run_pairs(seed: u64, start: u64, count: u64, each: &Progress<'_>) -> Summary {
+pub fn run_pairs(seed: u64, start: u64, count: u64, each: &Progress<'_>) -> Summary {
     use rayon::prelude::*;
     let results: Vec<(Pair, Result<Outcome, Failure>, f64)> = (start..start + count)
         .into_par_iter()
@@ -1460,7 +1401,7 @@ pub(crate) fn run_pairs(seed: u64, start: u64, count: u64, each: &Progress<'_>) 
 /// points, halving the run length down to single points), keeping only
 /// candidates that are still self-overlapping curves as read from a file.
 /// `budget` bounds the number of trial morphs.
-pub(crate) fn shrink(pair: &Pair, failure: &Failure, budget: usize) -> (Pair, Failure) {
+pub fn shrink(pair: &Pair, failure: &Failure, budget: usize) -> (Pair, Failure) {
     let mut best = pair.clone();
     let mut best_failure = failure.clone();
     let trials = std::cell::Cell::new(0usize);
@@ -1623,14 +1564,7 @@ pub(crate) fn shrink(pair: &Pair, failure: &Failure, budget: usize) -> (Pair, Fa
             } else {
                 &best.target
             };
-            let lo = cur
-                .iter()
-                .copied()
-                .fold(Point::splat(f64::INFINITY), Point::min);
-            let hi = cur
-                .iter()
-                .copied()
-                .fold(Point::splat(f64::NEG_INFINITY), Point::max);
+            let (lo, hi) = bounds(cur);
             // To a power of ten, through decimal text, so that the rounded
             // coordinates print short.
             let e = ((hi - lo).max_element().log10().floor() as i32) - k;
@@ -1663,8 +1597,8 @@ pub(crate) fn shrink(pair: &Pair, failure: &Failure, budget: usize) -> (Pair, Fa
 }
 
 /// The regression files (path, pair) in [`REGRESSION_DIR`], sorted by name.
-pub(crate) fn regression_files() -> Vec<(std::path::PathBuf, Result<Pair, String>)> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(REGRESSION_DIR);
+pub fn regression_files() -> Vec<(std::path::PathBuf, Result<Pair, String>)> {
+    let dir = crate::workspace_root().join(REGRESSION_DIR);
     let mut files: Vec<std::path::PathBuf> = std::fs::read_dir(&dir)
         .map(|rd| {
             rd.filter_map(|e| e.ok().map(|e| e.path()))
@@ -1685,7 +1619,7 @@ pub(crate) fn regression_files() -> Vec<(std::path::PathBuf, Result<Pair, String
 
 /// The angle, in degrees, of the thinnest triangle corner a curve's
 /// triangulation has (a measure of how thin a generated curve is).
-pub(crate) fn thinnest_degrees(points: &[Point]) -> f64 {
+pub fn thinnest_degrees(points: &[Point]) -> f64 {
     triangulate(points)
         .map(|t| t.min_angle() * 180.0 / PI)
         .unwrap_or(f64::NAN)

@@ -1,18 +1,18 @@
 //! Pacing measures of a tween's evenly paced frames (docs/design.md §12),
-//! shared by the pacing test and `examples/pacing.rs` (`#[path]`-included).
+//! shared by the pacing test and `examples/pacing.rs`.
 
 use immerse::morph::Tween;
 
 /// The spread of the per-frame steps of `frames` evenly paced frames.
-pub(crate) struct Pacing {
+pub struct Pacing {
     /// Largest per-frame mean vertex step over the median of those.
-    pub(crate) mean_ratio: f64,
+    pub mean_ratio: f64,
     /// Largest per-frame single-vertex step over the median of those.
-    pub(crate) max_ratio: f64,
+    pub max_ratio: f64,
 }
 
 /// Measures the frames at `i / (frames - 1)`, linear easing.
-pub(crate) fn measure(tween: &Tween, frames: usize) -> Result<Pacing, immerse::morph::MorphError> {
+pub fn measure(tween: &Tween, frames: usize) -> Result<Pacing, immerse::morph::MorphError> {
     let ts: Vec<f64> = (0..frames)
         .map(|i| i as f64 / (frames - 1) as f64)
         .collect();

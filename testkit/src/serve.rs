@@ -2,8 +2,6 @@
 //! loopback, for the tests of the server (tests/integration/web.rs) and
 //! its hostile-traffic test (tests/hostile.rs).
 
-#![allow(dead_code, reason = "each test binary uses a part")]
-
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
 use std::process::{Child, Command, Stdio};
@@ -11,7 +9,9 @@ use std::time::Duration;
 
 /// A running `immerse serve --port 0`, killed when dropped.
 pub struct Server {
+    /// The server's process.
     pub child: Child,
+    /// The loopback port it printed.
     pub port: u16,
 }
 
@@ -63,10 +63,6 @@ impl Server {
         Server { child, port }
     }
 
-    pub fn start(extra: &[&str]) -> Server {
-        Server::start_with(env!("CARGO_BIN_EXE_immerse"), extra, false)
-    }
-
     /// The request head of `method path`, with this server's Host,
     /// `Connection: close` and, for a body, its JSON type and length.
     pub fn head(&self, method: &str, path: &str, body_len: Option<usize>) -> String {
@@ -90,10 +86,13 @@ impl Server {
         (status, body)
     }
 
+    /// `GET path`; returns (status, body).
     pub fn get(&self, path: &str) -> (u16, Vec<u8>) {
         self.request("GET", path, None)
     }
 
+    /// `POST path` with a JSON body; returns (status, the answer's JSON).
+    /// Panics when the answer is not JSON.
     pub fn post(&self, path: &str, json: &serde_json::Value) -> (u16, serde_json::Value) {
         let (status, body) = self.request("POST", path, Some(json.to_string().as_bytes()));
         let value = serde_json::from_slice(&body).unwrap_or_else(|e| {
@@ -105,16 +104,7 @@ impl Server {
     /// The server's resident memory in bytes (Linux: /proc), or None once
     /// it has exited.
     pub fn rss(&self) -> Option<u64> {
-        let status = std::fs::read_to_string(format!("/proc/{}/status", self.child.id())).ok()?;
-        let kb: u64 = status
-            .lines()
-            .find_map(|l| l.strip_prefix("VmRSS:"))?
-            .trim()
-            .trim_end_matches("kB")
-            .trim()
-            .parse()
-            .ok()?;
-        Some(kb * 1024)
+        rss_of(self.child.id())
     }
 
     /// True while the process runs.
@@ -128,6 +118,21 @@ impl Drop for Server {
         let _ = self.child.kill();
         let _ = self.child.wait();
     }
+}
+
+/// The resident memory in bytes of process `pid` (Linux: /proc), or None
+/// once it has exited.
+pub fn rss_of(pid: u32) -> Option<u64> {
+    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
+    let kb: u64 = status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmRSS:"))?
+        .trim()
+        .trim_end_matches("kB")
+        .trim()
+        .parse()
+        .ok()?;
+    Some(kb * 1024)
 }
 
 /// Sends `head` and `body` on a new connection and reads the whole

@@ -58,6 +58,7 @@ skip=(
   'pip install*|installs the Python package (docs/python.md); scripts/python-test.sh does it in a fresh venv'
   'python*|Python commands of docs/python.md and docs/inkscape.md need the package installed; scripts/python-test.sh runs their tests'
   'cargo install*|installs the binary into ~/.cargo/bin (docs/inkscape.md)'
+  'cargo run --release --features experimental*|builds the crate again with the experimental options (minutes); .ci/run builds and tests that feature'
   'cp inkscape/*|installs the Inkscape extension into a user folder; scripts/python-test.sh runs it through Inkscape'
   'cargo run --release --example stress -- --replay*|replays tests/stress-regressions/, which the test suite replays too (stress_regressions_all_morph)'
 )

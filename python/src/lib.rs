@@ -210,11 +210,10 @@ fn morph_options(
         .with_quality(quality_of(quality)?)
         .with_morph(morph);
     if let Some(c) = correspondence {
-        let all: Vec<(Correspondence, &'static str)> = Correspondence::ALL
-            .iter()
-            .map(|c| (*c, c.as_str()))
-            .collect();
-        options = options.with_correspondence(parse_choice("correspondence", c, &all)?);
+        options = options.with_correspondence(
+            c.parse::<Correspondence>()
+                .map_err(PyValueError::new_err)?,
+        );
     }
     if let Some(c) = counts {
         options = options.with_counts(parse_choice(

@@ -370,8 +370,44 @@ mod tests {
     #[test]
     fn path_names_round_trip() {
         for p in ThirdVertexPath::ALL {
-            assert_eq!(p.as_str().parse::<ThirdVertexPath>(), Ok(p));
+            let parsed = p.as_str().parse::<ThirdVertexPath>();
+            if cfg!(feature = "experimental") || !p.is_experimental() {
+                assert_eq!(parsed, Ok(p));
+            } else {
+                // Refused, naming the offered paths.
+                let e = parsed.unwrap_err();
+                assert!(
+                    e.contains("experimental") && e.contains("rigid, hybrid, straight"),
+                    "{e}"
+                );
+            }
         }
+        assert_eq!(
+            ThirdVertexPath::offered().len(),
+            if cfg!(feature = "experimental") { 7 } else { 3 }
+        );
         assert!("spline".parse::<ThirdVertexPath>().is_err());
+    }
+
+    #[test]
+    fn correspondence_names_round_trip() {
+        use crate::morph::Correspondence;
+        for c in Correspondence::ALL {
+            let parsed = c.as_str().parse::<Correspondence>();
+            if cfg!(feature = "experimental") || !c.is_experimental() {
+                assert_eq!(parsed, Ok(c));
+            } else {
+                let e = parsed.unwrap_err();
+                assert!(
+                    e.contains("experimental") && e.contains("corners, min-flips, best"),
+                    "{e}"
+                );
+            }
+        }
+        assert_eq!(
+            Correspondence::offered().len(),
+            if cfg!(feature = "experimental") { 7 } else { 3 }
+        );
+        assert!("nearest".parse::<Correspondence>().is_err());
     }
 }

@@ -182,6 +182,68 @@ fn usage_errors_exit_2() {
     assert_eq!(out.status.code(), Some(2));
 }
 
+/// The experimental paths and correspondences are refused in a default
+/// build (exit 2, before any file is read), naming the offered values,
+/// and `--help` lists only the offered ones; every offered one morphs.
+#[test]
+#[cfg(not(feature = "experimental"))]
+fn experimental_options_are_refused_naming_the_offered_ones() {
+    let (a, b) = (curve("triangle.json"), curve("square.json"));
+    let (a, b) = (a.to_str().unwrap(), b.to_str().unwrap());
+    for (flag, value, offered) in [
+        ("--path", "polar", "rigid, hybrid, straight"),
+        ("--path", "rotate-slide", "rigid, hybrid, straight"),
+        ("--correspondence", "identity", "corners, min-flips, best"),
+        ("--correspondence", "outline", "corners, min-flips, best"),
+    ] {
+        for command in ["morph", "animate"] {
+            let out = immerse(&[command, a, b, flag, value]);
+            assert_eq!(out.status.code(), Some(2), "{command} {flag} {value}");
+            let e = stderr(&out);
+            assert!(
+                e.contains(&format!("'{value}' is experimental")) && e.contains(offered),
+                "{command} {flag} {value}: {e}"
+            );
+        }
+    }
+    let help = String::from_utf8_lossy(&immerse(&["morph", "--help"]).stdout).into_owned();
+    for hidden in [
+        "- polar",
+        "- angle",
+        "- rotate-slide",
+        "- linear",
+        "- pivot",
+        "- identity",
+    ] {
+        assert!(!help.contains(hidden), "--help lists {hidden}");
+    }
+    for shown in [
+        "- rigid",
+        "- straight",
+        "- hybrid",
+        "- corners",
+        "- min-flips",
+        "- best",
+    ] {
+        assert!(help.contains(shown), "--help misses {shown}");
+    }
+    for (flag, value) in [
+        ("--path", "rigid"),
+        ("--path", "straight"),
+        ("--path", "hybrid"),
+        ("--correspondence", "corners"),
+        ("--correspondence", "min-flips"),
+    ] {
+        let out = immerse(&["morph", a, b, flag, value]);
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{flag} {value}: {}",
+            stderr(&out)
+        );
+    }
+}
+
 #[test]
 fn morph_writes_verified_json_frames() {
     let dir = tempfile::tempdir().unwrap();

@@ -622,8 +622,9 @@ fn serve_drains_on_ctrl_c() {
 }
 
 /// The page takes its option lists from `GET /api/options`, which offers
-/// exactly the library's paths and correspondence rules and the command
-/// line's values, and the server morphs with each of them.
+/// exactly the paths and correspondence rules the library offers in this
+/// build and the command line's values, and the server morphs with each
+/// of them; an experimental one is refused with 400 naming the offered.
 #[test]
 fn the_options_offer_every_path_and_rule_and_the_server_takes_them() {
     let server = start(&[]);
@@ -643,15 +644,17 @@ fn the_options_offer_every_path_and_rule_and_the_server_takes_them() {
         v
     };
     let paths = names("path");
-    let mut want: Vec<String> = immerse::morph::ThirdVertexPath::ALL
+    let mut want: Vec<String> = immerse::morph::ThirdVertexPath::offered()
+        .iter()
         .map(|p| p.as_str().to_string())
-        .to_vec();
+        .collect();
     want.sort();
     assert_eq!(sorted(paths.clone()), want);
     let rules = names("correspondence");
-    let mut want: Vec<String> = immerse::morph::Correspondence::ALL
+    let mut want: Vec<String> = immerse::morph::Correspondence::offered()
+        .iter()
         .map(|r| r.as_str().to_string())
-        .to_vec();
+        .collect();
     want.sort();
     assert_eq!(sorted(rules.clone()), want);
     assert_eq!(options["fps"]["min"], 0.1);
@@ -691,7 +694,15 @@ fn the_options_offer_every_path_and_rule_and_the_server_takes_them() {
             tried.push(format!("{key}={v}"));
         }
     }
-    assert!(tried.len() >= 20, "{tried:?}");
+    assert!(tried.len() >= 16, "{tried:?}");
+    if !cfg!(feature = "experimental") {
+        for (key, value) in [("path", "polar"), ("correspondence", "identity")] {
+            let body = serde_json::json!({"curves": curves, "frames": 4, key: value});
+            let (status, reply) = server.post("/api/morph", &body);
+            assert_eq!(status, 400, "{key} {value}: {reply}");
+            assert!(reply.to_string().contains("experimental"), "{reply}");
+        }
+    }
 }
 
 /// The shapes of a drawing as `POST /api/check` reads them, in the
@@ -724,7 +735,7 @@ fn checked_drawing(server: &Server, file: &str) -> serde_json::Value {
 /// morph` does them, their files served, and their limits kept.
 #[test]
 fn serve_morphs_drawings_like_the_cli_within_its_limits() {
-    let server = Server::start(&[]);
+    let server = start(&[]);
     let a = checked_drawing(&server, "creature-a.svg");
     let b = checked_drawing(&server, "creature-b.svg");
     assert_eq!(a["shapes"].as_array().unwrap().len(), 4);

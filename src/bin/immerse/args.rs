@@ -525,7 +525,8 @@ pub(crate) struct TriangulateArgs {
     pub(crate) force: bool,
 }
 
-/// Third-vertex path of the morph.
+/// Third-vertex path of the morph. Polar, angle, rotate-slide and linear
+/// are experimental: hidden, and refused unless built with the feature.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum PathArg {
     /// As rigid as validity allows: each triangle's rotation and stretch interpolated, positions by least squares; parts turn instead of shrinking, spirals wind (guaranteed).
@@ -534,12 +535,16 @@ pub(crate) enum PathArg {
     Hybrid,
     /// As straight as validity allows: linear where the linear morph is valid; on the last leg it competes with hybrid and polar (guaranteed).
     Straight,
+    #[cfg_attr(not(feature = "experimental"), value(hide = true))]
     /// As straight as validity allows along arcs about the centre: spirals wind (guaranteed).
     Polar,
+    #[cfg_attr(not(feature = "experimental"), value(hide = true))]
     /// Linear interpolation of triangle angles (guaranteed, more distortion).
     Angle,
+    #[cfg_attr(not(feature = "experimental"), value(hide = true))]
     /// The paper's rotate-and-slide path (checked; falls back to hybrid).
     RotateSlide,
+    #[cfg_attr(not(feature = "experimental"), value(hide = true))]
     /// Linear base-relative coordinates (checked; falls back to hybrid).
     Linear,
 }
@@ -579,19 +584,25 @@ pub(crate) enum IntermediateArg {
     Disk,
 }
 
-/// How the vertices of the two curves are matched.
+/// How the vertices of the two curves are matched. Outline, pivot, shape
+/// and identity are experimental: hidden, and refused unless built with
+/// the feature.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub(crate) enum CorrespondenceArg {
+    #[cfg_attr(not(feature = "experimental"), value(hide = true))]
     /// Match the outlines by arc length up to a rotation and scale; inserted vertices go where the other curve's are.
     Outline,
     /// As outline, with the curves' corners (turns of 60° or more, else rounded caps: 160° within 3% of the perimeter) matched in order and the arc between them piece by piece.
     Corners,
     /// The cyclic shift with the fewest edge flips between the triangulations.
     MinFlips,
+    #[cfg_attr(not(feature = "experimental"), value(hide = true))]
     /// Match the pivot vertices of the two triangulations (Mukherjee & Gopi §6.1).
     Pivot,
+    #[cfg_attr(not(feature = "experimental"), value(hide = true))]
     /// The cyclic shift that best matches the shapes themselves.
     Shape,
+    #[cfg_attr(not(feature = "experimental"), value(hide = true))]
     /// Vertex 0 matches vertex 0.
     Identity,
     /// Plan with the outline, min-flips and (when the corners match up) corners rules; keep the one whose vertices travel less.

@@ -3,7 +3,9 @@
 use super::keyed::{self, Played};
 use super::progress_bar;
 use crate::Outcome;
-use crate::args::{CorrespondenceArg, CountsArg, FormatArg, IntermediateArg, MorphArgs, PathArg};
+use crate::args::{
+    CorrespondenceArg, CountsArg, FormatArg, IntermediateArg, MorphArgs, PathArg, QualityArg,
+};
 use crate::output;
 use anyhow::Context;
 use immerse::frames::{Morph, metrics};
@@ -52,6 +54,7 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         .parse()
         .with_context(|| format!("--easing '{}'", args.easing))?;
     super::check_fps("--fps", args.fps)?;
+    let options = options(args)?;
     // Every output is checked before any work: nothing is computed for
     // an output that would then be refused.
     let images = match &args.output {
@@ -87,7 +90,7 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
     );
     if several(&src) || several(&dst) {
         // Drawings: every shape morphs (docs/design.md §2b).
-        return super::drawing_morph::run(args, images, &options(args));
+        return super::drawing_morph::run(args, images, &options);
     }
     let (src, dst) = (src?, dst?);
     if !args.quiet {
@@ -111,7 +114,6 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         );
     }
     let times = render::frame_times(args.frames as usize, &easing);
-    let options = options(args);
     let busy = super::spinner(
         &format!("triangulating, matching and morphing {n} vertices"),
         args.quiet || n < 300,
@@ -396,19 +398,58 @@ pub(crate) fn write_frames(
     Ok(())
 }
 
+/// The flags that choose how a morph is planned, shared by `morph`,
+/// `animate` and the server.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PlanFlags {
+    pub(crate) path: PathArg,
+    pub(crate) correspondence: CorrespondenceArg,
+    pub(crate) quality: QualityArg,
+    pub(crate) counts: CountsArg,
+    pub(crate) intermediate: IntermediateArg,
+    pub(crate) key_tolerance: f64,
+}
+
+impl PlanFlags {
+    /// The library options these flags ask for, built in this one place.
+    /// A path or correspondence that this build offers only with the
+    /// `experimental` feature is refused with the library's own message
+    /// (its parser decides), naming the values offered instead.
+    pub(crate) fn options(self) -> Result<CurveMorphOptions, String> {
+        let path: ThirdVertexPath = ThirdVertexPath::from(self.path)
+            .as_str()
+            .parse()
+            .map_err(|e| format!("--path: {e}"))?;
+        let correspondence: Correspondence = Correspondence::from(self.correspondence)
+            .as_str()
+            .parse()
+            .map_err(|e| format!("--correspondence: {e}"))?;
+        Ok(CurveMorphOptions::DEFAULT
+            .with_quality(Quality::from(self.quality))
+            .with_counts(match self.counts {
+                CountsArg::Insert => Counts::Insert,
+                CountsArg::Resample => Counts::Resample,
+            })
+            .with_correspondence(correspondence)
+            .with_intermediate(match self.intermediate {
+                IntermediateArg::Target => Intermediate::Target,
+                IntermediateArg::Disk => Intermediate::Disk,
+            })
+            .with_morph(MorphOptions::DEFAULT.with_path(path))
+            .with_key_tolerance(self.key_tolerance))
+    }
+}
+
 /// The library options `immerse morph`'s arguments ask for.
-pub(crate) fn options(args: &MorphArgs) -> CurveMorphOptions {
-    CurveMorphOptions::DEFAULT
-        .with_quality(Quality::from(args.quality))
-        .with_counts(match args.counts {
-            CountsArg::Insert => Counts::Insert,
-            CountsArg::Resample => Counts::Resample,
-        })
-        .with_correspondence(args.correspondence.into())
-        .with_intermediate(match args.intermediate {
-            IntermediateArg::Target => Intermediate::Target,
-            IntermediateArg::Disk => Intermediate::Disk,
-        })
-        .with_morph(MorphOptions::DEFAULT.with_path(args.path.into()))
-        .with_key_tolerance(args.key_tolerance)
+pub(crate) fn options(args: &MorphArgs) -> anyhow::Result<CurveMorphOptions> {
+    PlanFlags {
+        path: args.path,
+        correspondence: args.correspondence,
+        quality: args.quality,
+        counts: args.counts,
+        intermediate: args.intermediate,
+        key_tolerance: args.key_tolerance,
+    }
+    .options()
+    .map_err(anyhow::Error::msg)
 }

@@ -14,9 +14,7 @@ use immerse::curve::SvgShapes;
 use immerse::drawing::{
     Drawing, DrawingError, DrawingFrame, DrawingTween, MatchMode, Matching, ShapeKeys, match_shapes,
 };
-use immerse::morph::CurveMorphOptions;
 use immerse::sequence::{Schedule, Timing, schedule_lengths};
-use immerse::{Quality, morph::Intermediate, morph::MorphOptions};
 use immerse_render as render;
 use std::path::Path;
 
@@ -154,15 +152,7 @@ pub(super) fn run(
         MatchArg::Order => MatchMode::Order,
         MatchArg::Auto => MatchMode::Auto,
     };
-    let options = CurveMorphOptions::DEFAULT
-        .with_quality(Quality::from(args.quality))
-        .with_correspondence(args.correspondence.into())
-        .with_intermediate(match args.intermediate {
-            crate::args::IntermediateArg::Target => Intermediate::Target,
-            crate::args::IntermediateArg::Disk => Intermediate::Disk,
-        })
-        .with_morph(MorphOptions::DEFAULT.with_path(args.path.into()))
-        .with_key_tolerance(args.key_tolerance);
+    let options = super::plan_options(args)?;
     let mut matchings = Vec::with_capacity(keys.len() - 1);
     let mut tweens = Vec::with_capacity(keys.len() - 1);
     for (s, w) in keys.windows(2).enumerate() {

@@ -7,17 +7,17 @@ mod timeline;
 use super::keyed::Played;
 use super::morph::write_frames;
 use crate::Outcome;
-use crate::args::{AnimateArgs, FormatArg, IntermediateArg};
+use crate::args::{AnimateArgs, FormatArg};
 use crate::output;
 use anyhow::Context;
 use immerse::curve::SvgShapes;
 use immerse::frames::Morph;
-use immerse::morph::{CurveMorphOptions, Intermediate, Keyframe, MorphOptions};
+use immerse::morph::{CurveMorphOptions, Keyframe};
 use immerse::sequence::{
     Ease, Hint, HintAt, Key, KeySpeed, KeyTiming, Schedule, Sequence, SequenceError,
     SequenceOptions, Timing, key_speeds,
 };
-use immerse::{Curve, Point, Quality};
+use immerse::{Curve, Point};
 use immerse_render as render;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -119,17 +119,7 @@ pub(crate) fn run(args: &AnimateArgs) -> anyhow::Result<Outcome> {
         .iter()
         .map(|k| Key::new(k.name.clone(), k.curve.points.clone()))
         .collect();
-    let options = SequenceOptions::DEFAULT.with_morph(
-        CurveMorphOptions::DEFAULT
-            .with_quality(Quality::from(args.quality))
-            .with_correspondence(args.correspondence.into())
-            .with_intermediate(match args.intermediate {
-                IntermediateArg::Target => Intermediate::Target,
-                IntermediateArg::Disk => Intermediate::Disk,
-            })
-            .with_morph(MorphOptions::DEFAULT.with_path(args.path.into()))
-            .with_key_tolerance(args.key_tolerance),
-    );
+    let options = SequenceOptions::DEFAULT.with_morph(plan_options(args)?);
     let biggest = keys.iter().map(|k| k.curve.len()).max().unwrap_or(0);
     let busy = super::spinner(
         &format!(
@@ -568,4 +558,19 @@ fn summary(
         ));
     }
     lines.join("\n")
+}
+
+/// The library options `immerse animate`'s arguments ask for (the one
+/// builder the morph command and the server use too).
+pub(crate) fn plan_options(args: &AnimateArgs) -> anyhow::Result<CurveMorphOptions> {
+    crate::commands::morph::PlanFlags {
+        path: args.path,
+        correspondence: args.correspondence,
+        quality: args.quality,
+        counts: crate::args::CountsArg::Insert,
+        intermediate: args.intermediate,
+        key_tolerance: args.key_tolerance,
+    }
+    .options()
+    .map_err(anyhow::Error::msg)
 }

@@ -240,7 +240,9 @@ fn choices<T: ValueEnum>(default: &T) -> serde_json::Value {
     let values: Vec<serde_json::Value> = T::value_variants()
         .iter()
         .filter_map(|v| {
-            let p = v.to_possible_value()?;
+            // Hidden values (the experimental ones of this build) are not
+            // offered.
+            let p = v.to_possible_value().filter(|p| !p.is_hide_set())?;
             Some(serde_json::json!({
                 "name": p.get_name(),
                 "help": p.get_help().map(ToString::to_string),

@@ -23,12 +23,9 @@ use immerse::drawing::{
     ShapeKeys, match_shapes,
 };
 use immerse::frames::{Fallback, Morph};
-use immerse::morph::{
-    Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, Keyframe,
-    MorphOptions, ThirdVertexPath, Tween,
-};
+use immerse::morph::{CurveMorphError, CurveMorphOptions, Keyframe, ThirdVertexPath, Tween};
 use immerse::sequence::{Key, Sequence, SequenceError, SequenceOptions};
-use immerse::{Curve, Point, Quality};
+use immerse::{Curve, Point};
 use immerse_render as render;
 use serde::Deserialize;
 use std::collections::{HashMap, VecDeque};
@@ -515,19 +512,16 @@ pub(super) fn plan(req: MorphRequest, limits: &ShapeLimits) -> Result<Plan, ApiE
         CorrespondenceArg::Best,
     )?;
     // The same options as `immerse morph` builds from its arguments.
-    let options = CurveMorphOptions::DEFAULT
-        .with_quality(Quality::from(quality))
-        .with_counts(match counts {
-            CountsArg::Insert => Counts::Insert,
-            CountsArg::Resample => Counts::Resample,
-        })
-        .with_correspondence(Correspondence::from(correspondence))
-        .with_intermediate(match intermediate {
-            IntermediateArg::Target => Intermediate::Target,
-            IntermediateArg::Disk => Intermediate::Disk,
-        })
-        .with_morph(MorphOptions::DEFAULT.with_path(ThirdVertexPath::from(path)))
-        .with_key_tolerance(limits.key_tolerance);
+    let options = crate::commands::morph::PlanFlags {
+        path,
+        correspondence,
+        quality,
+        counts,
+        intermediate,
+        key_tolerance: limits.key_tolerance,
+    }
+    .options()
+    .map_err(|e| ApiError::bad(e.trim_start_matches("--").to_string()))?;
     let input = match req.drawings {
         Some(drawings) => {
             let mode: MatchArg = value("match", req.match_mode.as_deref(), MatchArg::Auto)?;

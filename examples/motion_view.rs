@@ -36,6 +36,10 @@ struct Row {
     unwind: f64,
     ms: f64,
     path: String,
+    /// Key segments, and those the certificate (docs/design.md §13)
+    /// rejects when re-run on the keys as `Tween::keyframes` gives them.
+    segments: usize,
+    uncertified: usize,
     error: Option<String>,
 }
 
@@ -70,6 +74,9 @@ impl Row {
         if self.unwind < 0.9 {
             m.push("unwind");
         }
+        if self.uncertified > 0 {
+            m.push("uncertified");
+        }
         m
     }
 }
@@ -97,6 +104,8 @@ fn measure(
         unwind: f64::NAN,
         ms: 0.0,
         path: String::new(),
+        segments: 0,
+        uncertified: 0,
         error: None,
     };
     let tween = match Tween::new(a, b, options) {
@@ -115,6 +124,23 @@ fn measure(
         .map(|p| p.as_str())
         .collect::<Vec<_>>()
         .join("+");
+    // Every key segment certified again, exactly, from the keys as
+    // written (the triangulation of the segment is the first key's; a
+    // flip key carries the one that follows).
+    let keys = tween.keyframes();
+    for w in keys.windows(2) {
+        row.segments += 1;
+        let certified = immerse::certify::certify_segment(
+            &w[0].points,
+            &w[1].points,
+            &w[0].triangles,
+            immerse::certify::Player::Exact,
+        )
+        .is_ok_and(|r| r.is_certified());
+        if !certified {
+            row.uncertified += 1;
+        }
+    }
     let frames = |k: usize| -> Result<Vec<Frame>, String> {
         tween
             .morph(&fractions(k))
@@ -273,7 +299,7 @@ fn main() {
         ok.iter().map(|r| f(r)).fold(init, g)
     };
     println!(
-        "{set}: {} pairs ({} errors); jumps {}; edge max {:.2} (> 2: {}); area [{:.2}, {:.2}] (collapse {}, balloon {}); angle ratio median {:.2}; distortion median {:.2} max {:.2}; detour median {:.2} max {:.2} (> 3: {}); unwind min {:.2} (< 0.9: {}); planning {:.0} ms in all; wall {:.0} s",
+        "{set}: {} pairs ({} errors); jumps {}; edge max {:.2} (> 2: {}); area [{:.2}, {:.2}] (collapse {}, balloon {}); angle ratio median {:.2}; distortion median {:.2} max {:.2}; detour median {:.2} max {:.2} (> 3: {}); unwind min {:.2} (< 0.9: {}); key segments {} ({} uncertified, on {} pairs); planning {:.0} ms in all; wall {:.0} s",
         rows.len(),
         count("error"),
         count("jump"),
@@ -291,6 +317,9 @@ fn main() {
         count("detour"),
         fold(&|r| r.unwind, f64::INFINITY, f64::min),
         count("unwind"),
+        ok.iter().map(|r| r.segments).sum::<usize>(),
+        ok.iter().map(|r| r.uncertified).sum::<usize>(),
+        count("uncertified"),
         ok.iter().map(|r| r.ms).sum::<f64>(),
         start.elapsed().as_secs_f64()
     );

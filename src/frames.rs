@@ -37,7 +37,7 @@ impl serde::Serialize for Morph {
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Metrics {
     /// Numerical rank of the triangle-area matrix (rows triangles, columns
-    /// frames), tolerance [`RANK_TOLERANCE`] × the largest singular value;
+    /// frames), tolerance 10⁻⁶ × the largest singular value;
     /// `None` when the triangulation changes between frames.
     pub area_rank: Option<usize>,
     /// Variance over frames of the norm of the per-frame change in

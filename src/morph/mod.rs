@@ -1,27 +1,35 @@
-//! Morphing: compatible triangulations by propagation along the dual tree
-//! (docs/design.md §6).
+//! Morphing two curves, in the stages of docs/design.md §5–§7, each a room
+//! of its own, data flowing one way (each stage uses only those listed
+//! after it):
+//!
+//! - [`Tween`] (`tween`): the front door; a morph's certified keys and its
+//!   frames at any t.
+//! - `plan`: equal counts, correspondences, triangulations, the two sides
+//!   of the staged route raced, the best plan kept.
+//! - `staged`: the staged route: legs toward intermediates, flips at the
+//!   keys between legs (`staged::target` shapes the intermediates).
+//! - `propagate`: one compatible morph under a fixed triangulation, laid
+//!   out along the dual tree (`compatible`, `layout`, `paths`, `rigid`).
+//! - `output`: what a morph gives ([`Frame`], [`Morph`], [`Fallback`]).
+//!
+//! Flip sequences and the flip gate live in [`crate::flip`].
 
-mod compatible;
-mod curves;
-pub mod flips;
-mod layout;
 pub(crate) mod output;
-mod paths;
-mod rigid;
-mod staged;
-mod target;
+mod plan;
+pub(crate) mod propagate;
+pub(crate) mod staged;
 mod tween;
 
-pub use compatible::{
-    Compatible, CompatibleError, DEFAULT_FAN_MARGIN, STRAIGHT_AREA_RANGE, area_and_centroid,
-    lay_out,
-};
-pub use curves::{
+pub use output::{Fallback, Frame, Morph};
+pub use plan::{
     Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, KEY_TOLERANCE,
     MAX_KEY_TOLERANCE, MorphReport, Side, equal_counts, morph_curves,
 };
-pub use output::{Fallback, Frame, Morph};
-pub use paths::ThirdVertexPath;
+pub use propagate::compatible::{
+    Compatible, CompatibleError, DEFAULT_FAN_MARGIN, STRAIGHT_AREA_RANGE, area_and_centroid,
+    lay_out,
+};
+pub use propagate::paths::ThirdVertexPath;
 pub use staged::Staged;
 pub use tween::{Keyframe, Tween, timed_keyframes};
 

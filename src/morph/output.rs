@@ -2,8 +2,8 @@
 //! recoveries on the way (docs/design.md §8). The motion measures of a
 //! frame sequence live above, in [`crate::frames`].
 
-use super::ThirdVertexPath;
 use crate::geom::Point;
+use crate::morph::ThirdVertexPath;
 
 /// One in-between: vertex positions and the triangulation they carry.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -58,7 +58,7 @@ impl Frame {
 ///
 /// In JSON: `{"path": ..., "fallback": ..., "fallbacks": [...], "motion":
 /// {"detour": ..., "unwind": ...}, "frames": [...]}`, where `motion` holds
-/// the [`detour`] and [`unwind`] of the frames (`null` where they are not
+/// the [`detour`](crate::frames::detour) and [`unwind`](crate::frames::unwind) of the frames (`null` where they are not
 /// defined, e.g. when the vertex count changes between frames).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Morph {

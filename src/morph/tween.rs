@@ -1,6 +1,6 @@
 //! A morph planned once, asked for frames at any t (docs/design.md §12).
 //!
-//! [`Tween::new`] does all the planning of [`super::morph_curves`]: equal
+//! [`Tween::new`] does all the planning of [`crate::morph::morph_curves`]: equal
 //! counts, triangulations, correspondence, both staged sides and the
 //! choice between them, every leg walked and checked exactly at its
 //! samples, the keys (split until every straight segment between two keys
@@ -21,14 +21,14 @@
 //! vertex move stay closest to their medians (within 1.5× and 2×, the
 //! aims of docs/design.md §12).
 
-use super::area_and_centroid;
-use super::curves::{CurveMorphError, CurveMorphOptions, MorphReport, Side, plan};
-use super::staged::{KEY_AREA_TOLERANCE, Leg, moves, recovery_paths};
-use super::{Fallback, Frame, Morph};
-use super::{MorphError, Staged, ThirdVertexPath};
 use crate::correspond::shift_triangles;
 use crate::geom::Point;
 use crate::immersion::check_triangles;
+use crate::morph::area_and_centroid;
+use crate::morph::plan::{CurveMorphError, CurveMorphOptions, MorphReport, Side, plan};
+use crate::morph::staged::{KEY_AREA_TOLERANCE, Leg, moves, recovery_paths};
+use crate::morph::{Fallback, Frame, Morph};
+use crate::morph::{MorphError, Staged, ThirdVertexPath};
 use std::cell::OnceCell;
 
 /// One key of a morph's animation: the shape at fraction `t` of the pace
@@ -92,7 +92,7 @@ pub struct Tween {
 
 impl Tween {
     /// Plans the morph of curve `a` into curve `b` (both oriented, turning
-    /// number +1), as [`super::morph_curves`] does.
+    /// number +1), as [`crate::morph::morph_curves`] does.
     ///
     /// # Errors
     ///
@@ -184,8 +184,8 @@ impl Tween {
                 Ok(_) => String::new(),
             };
             let other = match options.intermediate {
-                super::Intermediate::Disk => super::Intermediate::Target,
-                super::Intermediate::Target => super::Intermediate::Disk,
+                crate::morph::Intermediate::Disk => crate::morph::Intermediate::Target,
+                crate::morph::Intermediate::Target => crate::morph::Intermediate::Disk,
             };
             let maxmin = crate::Quality::MaxMin;
             let mut retries: Vec<(CurveMorphOptions, String)> = Vec::new();
@@ -208,7 +208,7 @@ impl Tween {
                     ),
                 ));
             }
-            let min_flips = super::Correspondence::MinFlips;
+            let min_flips = crate::morph::Correspondence::MinFlips;
             if options.correspondence != min_flips {
                 for intermediate in [options.intermediate, other] {
                     retries.push((
@@ -272,11 +272,11 @@ impl Tween {
 
     fn finish(
         n: usize,
-        sides: super::curves::Sides,
+        sides: crate::morph::plan::Sides,
         options: &CurveMorphOptions,
         mut fallbacks: Vec<Fallback>,
     ) -> Result<Tween, CurveMorphError> {
-        let star = |s: &super::curves::SideResult| match s {
+        let star = |s: &crate::morph::plan::SideResult| match s {
             Ok(Some(s)) => s.u_star,
             Ok(None) | Err(_) => f64::NAN,
         };
@@ -320,7 +320,7 @@ impl Tween {
             // Legs toward intermediates use a guaranteed path when an
             // unguaranteed one was asked for: say so.
             fallbacks.push(Fallback::new(
-                &format!("used the {} path", super::output::path_names(&paths)),
+                &format!("used the {} path", crate::morph::output::path_names(&paths)),
                 &format!(
                     "the {} path is not guaranteed, so the legs through intermediates use the hybrid path",
                     options.morph.path

@@ -19,12 +19,11 @@
 //! minimum angles: `maxmin ≥ delaunay ≥ any` (flips only raise the sorted
 //! angle vector; the DP is optimal).
 
-mod flips;
 mod optimal;
 mod simple;
 
-pub use flips::improve;
-pub(crate) use flips::improve_common;
+pub use crate::flip::delaunay::improve;
+pub(crate) use crate::flip::delaunay::improve_common;
 
 use std::fmt;
 use std::str::FromStr;

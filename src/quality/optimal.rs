@@ -40,33 +40,9 @@ use crate::immersion::NotSelfOverlapping;
 use crate::immersion::dp::{Table, decide, fill_by_tiles, is_ccw};
 use crate::immersion::valid::open_range_word;
 
-const NONE: u32 = u32::MAX;
+use crate::geom::polygon::sin2_min_angle;
 
-/// sin² of the smallest angle of the triangle `a, b, c` (a measurement).
-#[inline]
-pub(crate) fn sin2_min_angle(a: Point, b: Point, c: Point) -> f64 {
-    let (ab, bc, ca) = (b - a, c - b, a - c);
-    let (x, y, z) = (
-        ab.length_squared(),
-        bc.length_squared(),
-        ca.length_squared(),
-    );
-    let cross = ab.perp_dot(c - a);
-    let big = x.max(y).max(z);
-    let mid = if big == x {
-        y.max(z)
-    } else if big == y {
-        x.max(z)
-    } else {
-        x.max(y)
-    };
-    let denom = big * mid;
-    if denom > 0.0 {
-        (cross * cross / denom).min(1.0)
-    } else {
-        0.0
-    }
-}
+const NONE: u32 = u32::MAX;
 
 /// Working memory of [`maxmin`] for `n` points, in bytes.
 pub(crate) fn memory_bytes(n: usize) -> usize {

@@ -187,6 +187,32 @@ pub fn triangle_angles(a: Point, b: Point, c: Point) -> [f64; 3] {
     [ang(a, b, c), ang(b, c, a), ang(c, a, b)]
 }
 
+/// sin² of the smallest angle of the triangle `a, b, c` (a measurement).
+#[inline]
+pub fn sin2_min_angle(a: Point, b: Point, c: Point) -> f64 {
+    let (ab, bc, ca) = (b - a, c - b, a - c);
+    let (x, y, z) = (
+        ab.length_squared(),
+        bc.length_squared(),
+        ca.length_squared(),
+    );
+    let cross = ab.perp_dot(c - a);
+    let big = x.max(y).max(z);
+    let mid = if big == x {
+        y.max(z)
+    } else if big == y {
+        x.max(z)
+    } else {
+        x.max(y)
+    };
+    let denom = big * mid;
+    if denom > 0.0 {
+        (cross * cross / denom).min(1.0)
+    } else {
+        0.0
+    }
+}
+
 /// The sine of the smallest interior angle of the triangle `a, b, c`
 /// (the smallest angle is at most π/3, so its sine orders triangles as the
 /// angle does), without trigonometry: the least of |cross| / (|u| |v|)

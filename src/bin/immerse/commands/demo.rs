@@ -1,7 +1,7 @@
 //! `immerse demo`: morph two curves embedded in the binary and write PNG
 //! frames and a GIF. Needs no input and no network.
 
-use super::morph::write_frames;
+use super::write::write_frames;
 use crate::Outcome;
 use crate::args::{DemoArgs, FormatArg};
 use crate::output;

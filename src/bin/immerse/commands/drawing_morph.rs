@@ -107,7 +107,7 @@ pub(crate) fn run(
     if let (Some(out), Some(images)) = (&args.output, images) {
         let rendered: Vec<render::Frame> = frames.iter().map(render_frame).collect();
         let samples: Vec<(usize, f64)> = times.iter().map(|&t| (0, t)).collect();
-        let looping = super::morph::looping(args);
+        let looping = super::write::looping(args);
         let play = DrawingPlay::new(
             &[keys.as_slice()],
             &samples,
@@ -119,7 +119,7 @@ pub(crate) fn run(
             &play,
             out,
             images,
-            &super::morph::style(args),
+            &super::write::style(args),
             args.fps,
             looping,
             args.force,
@@ -451,7 +451,7 @@ pub(crate) fn write_images(
         FormatArg::Lottie => Kind::Lottie,
         FormatArg::AnimatedSvg => Kind::AnimatedSvg,
         _ => {
-            return super::morph::write_frames(
+            return super::write::write_frames(
                 frames, None, out, images, style, fps, looping, force, quiet,
             );
         }

@@ -1,7 +1,7 @@
 //! `immerse mesh-morph`: morphs between compatible planar tilings.
 
-use super::morph::write_frames;
 use super::plain_points;
+use super::write::write_frames;
 use crate::Outcome;
 use crate::args::{MeshMorphArgs, MethodArg, WeightsArg};
 use crate::output;

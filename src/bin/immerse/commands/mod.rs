@@ -11,6 +11,7 @@ mod mesh_morph;
 pub(crate) mod morph;
 mod serve;
 mod triangulate;
+mod write;
 
 use crate::Outcome;
 use crate::args::{Cli, Command, FormatArg, QualityArg};

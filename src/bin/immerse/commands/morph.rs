@@ -1,11 +1,8 @@
 //! `immerse morph`: frames from one curve to another.
 
-use super::keyed::{self, Played};
-use super::progress_bar;
+use super::keyed::Played;
 use crate::Outcome;
-use crate::args::{
-    CorrespondenceArg, CountsArg, FormatArg, IntermediateArg, MorphArgs, PathArg, QualityArg,
-};
+use crate::args::{CorrespondenceArg, CountsArg, IntermediateArg, MorphArgs, PathArg, QualityArg};
 use crate::output;
 use anyhow::Context;
 use immerse::frames::{Morph, metrics};
@@ -63,7 +60,7 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
             out,
             args.force,
             args.frames as usize,
-            &style(args),
+            &super::write::style(args),
             args.fps,
             args.columns,
         )?),
@@ -163,7 +160,7 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         let played = Played::new(
             &keyframes,
             &times,
-            looping(args),
+            super::write::looping(args),
             easing != render::Easing::Linear,
         );
         write_images(args, out, images, &morph, &played)?;
@@ -279,25 +276,6 @@ impl Timings {
     }
 }
 
-/// The image style of `immerse morph`.
-pub(crate) fn style(args: &MorphArgs) -> render::Style {
-    render::Style::DEFAULT
-        .with_size(args.size.0, args.size.1)
-        .with_wireframe(args.wireframe)
-        .with_onion_skin(args.onion)
-}
-
-/// How `immerse morph`'s animations play.
-pub(crate) fn looping(args: &MorphArgs) -> render::Loop {
-    if args.ping_pong {
-        render::Loop::PingPong
-    } else if args.once {
-        render::Loop::Once
-    } else {
-        render::Loop::Loop
-    }
-}
-
 /// A morph's JSON (`frames` and the rest, [`Morph`]) with its keys:
 /// `"key_count"` and `"keyframes": [{"t", "points", "triangles"}, …]`.
 #[derive(serde::Serialize)]
@@ -327,75 +305,17 @@ fn write_images(
     played: &Played,
 ) -> anyhow::Result<()> {
     let frames = super::render_frames(&morph.frames);
-    write_frames(
+    super::write::write_frames(
         &frames,
         Some(played),
         out,
         images,
-        &style(args),
+        &super::write::style(args),
         args.fps,
-        looping(args),
+        super::write::looping(args),
         args.force,
         args.quiet,
     )
-}
-
-/// Writes rendered frames to `out` as `images` says, with a progress bar.
-#[allow(
-    clippy::too_many_arguments,
-    reason = "plain glue between CLI options and the renderer"
-)]
-pub(crate) fn write_frames(
-    frames: &[render::Frame],
-    keys: Option<&Played>,
-    out: &Path,
-    images: super::ImageOutput,
-    style: &render::Style,
-    fps: f64,
-    looping: render::Loop,
-    force: bool,
-    quiet: bool,
-) -> anyhow::Result<()> {
-    let opts = render::Output::DEFAULT.with_force(force);
-    let total = match images.format {
-        FormatArg::Gif => looping.sequence(frames.len()).len(),
-        _ => frames.len(),
-    };
-    let bar = progress_bar(total as u64, "render", quiet);
-    let progress = |done: usize| bar.set_position(done as u64);
-    match images.format {
-        FormatArg::Png => {
-            render::write_png_sequence(frames, out, style, &opts, &progress)?;
-        }
-        FormatArg::Svg => {
-            render::write_svg_sequence(frames, out, style, &opts, &progress)?;
-        }
-        FormatArg::Gif => render::write_gif(frames, out, style, fps, looping, &opts, &progress)?,
-        FormatArg::AnimatedSvg | FormatArg::Lottie if keys.is_some() => {
-            let kind = if images.format == FormatArg::Lottie {
-                keyed::Kind::Lottie
-            } else {
-                keyed::Kind::AnimatedSvg
-            };
-            let played = keys.expect("matched on is_some");
-            let view = render::View::fit(frames, style);
-            let written = keyed::write(kind, played, view, style, fps, looping)
-                .with_context(|| format!("-o {}", out.display()))?;
-            keyed::save(&written, out, force)?;
-            if !quiet {
-                output::note(&keyed::describe(kind, &written, written.text.len()));
-            }
-        }
-        FormatArg::AnimatedSvg => {
-            render::write_animated_svg(frames, out, style, fps, looping, &opts)?;
-        }
-        FormatArg::Sheet => {
-            render::write_contact_sheet(frames, out, style, images.columns, &opts)?;
-        }
-        FormatArg::Lottie => render::write_lottie(frames, out, style, fps, looping, &opts)?,
-    }
-    bar.finish_and_clear();
-    Ok(())
 }
 
 /// The flags that choose how a morph is planned, shared by `morph`,

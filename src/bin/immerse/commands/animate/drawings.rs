@@ -283,7 +283,7 @@ fn write_output(
             format: FormatArg::Sheet,
             columns: k + 2,
         };
-        return crate::commands::morph::write_frames(
+        return crate::commands::write::write_frames(
             &picked, None, out, sheet, style, fps, looping, args.force, args.quiet,
         );
     }

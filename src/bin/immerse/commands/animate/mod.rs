@@ -5,7 +5,7 @@ mod drawings;
 mod timeline;
 
 use super::keyed::Played;
-use super::morph::write_frames;
+use super::write::write_frames;
 use crate::Outcome;
 use crate::args::{AnimateArgs, FormatArg};
 use crate::output;

@@ -7,6 +7,9 @@
 //! in cyclic order with the smallest first (so sorted). Two diagonals
 //! cross when their endpoints interleave around the polygon.
 
+pub(crate) mod delaunay;
+pub mod sequence;
+
 use rustc_hash::FxHashMap;
 
 /// One flip: the diagonal `from` is replaced by `to` in the quad they

@@ -205,7 +205,7 @@ pub(crate) fn gate(p: &[Point], quad: [u32; 4], floor: f64) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::morph::compatible::tests::{Rng, random_triangulation};
+    use crate::morph::propagate::compatible::tests::{Rng, random_triangulation};
 
     #[test]
     fn flip_sequence_reaches_the_target_at_the_counted_cost() {

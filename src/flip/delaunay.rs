@@ -108,7 +108,7 @@ pub(crate) fn improve_common(curves: &[&[Point]], triangles: Vec<[u32; 3]>) -> V
             .iter()
             .map(|c| {
                 let p = |v: u32| c[v as usize];
-                super::optimal::sin2_min_angle(p(t[0]), p(t[1]), p(t[2]))
+                crate::geom::polygon::sin2_min_angle(p(t[0]), p(t[1]), p(t[2]))
             })
             .fold(f64::INFINITY, f64::min)
     };

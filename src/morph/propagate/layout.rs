@@ -1,6 +1,6 @@
 //! Laying out a triangulated n-gon from its triangle angles: the one
 //! layout every angle-based path, the target intermediate and
-//! [`super::lay_out`] use (docs/design.md §6).
+//! [`crate::morph::lay_out`] use (docs/design.md §6).
 //!
 //! With no interior vertices the dual tree is a tree, so any angle vector
 //! lays out: the root edge is placed, then every triangle puts its third

@@ -13,12 +13,12 @@
 //! onto the straight guide, kept to an area range (docs/design.md §6,
 //! "Placement"); it is applied at every t, so nothing jumps.
 
-use super::layout::{self, lerp3};
-use super::paths::{
+use crate::geom::Point;
+use crate::morph::propagate::layout::{self, lerp3};
+use crate::morph::propagate::paths::{
     RotateSlide, ThirdVertexPath, base_frame_angles, from_base_frame, to_base_frame,
 };
-use super::rigid::RigidGuide;
-use crate::geom::Point;
+use crate::morph::propagate::rigid::RigidGuide;
 use crate::tree::{DualTree, RootChoice, Rooted, root_triangle};
 use std::f64::consts::TAU;
 

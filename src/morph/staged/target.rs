@@ -26,13 +26,13 @@
 //! angles (a local unblock); if that is not enough either, the disk route
 //! of docs/design.md §7 finishes the job, so the procedure always ends.
 
-use super::compatible::lay_out_rooted;
-use super::flips::FlipTriangulation;
-use super::flips::gate;
-use super::layout::{self, fit_similarity, lerp3};
+use crate::flip::sequence::FlipTriangulation;
+use crate::flip::sequence::gate;
 use crate::geom::Point;
 use crate::geom::polygon::triangle_angles;
 use crate::immersion::check_triangles;
+use crate::morph::propagate::compatible::lay_out_rooted;
+use crate::morph::propagate::layout::{self, fit_similarity, lerp3};
 use crate::tree::DualTree;
 use std::f64::consts::{PI, TAU};
 
@@ -168,7 +168,7 @@ pub(crate) struct Candidates {
     /// The goal's diagonals, sorted.
     goal: Vec<(u32, u32)>,
     /// Crossing counts against the goal.
-    crossings: super::flips::CrossingCounter,
+    crossings: crate::flip::sequence::CrossingCounter,
     /// Crossing counts of the current diagonals not in the goal, as far as
     /// counted.
     counted: rustc_hash::FxHashMap<(u32, u32), usize>,
@@ -181,7 +181,7 @@ impl Candidates {
         let mut c = Candidates {
             by_diagonal: rustc_hash::FxHashMap::default(),
             goal: goal.to_vec(),
-            crossings: super::flips::CrossingCounter::new(goal),
+            crossings: crate::flip::sequence::CrossingCounter::new(goal),
             counted: rustc_hash::FxHashMap::default(),
             refreshed: Vec::new(),
         };
@@ -306,7 +306,7 @@ impl Candidates {
 mod tests {
     use super::*;
     use crate::morph::area_and_centroid;
-    use crate::morph::compatible::tests::spiral_strip;
+    use crate::morph::propagate::compatible::tests::spiral_strip;
     use crate::quality::{Quality, triangulate_with};
 
     #[test]
@@ -316,7 +316,7 @@ mod tests {
         let ta = triangulate_with(&a, Quality::Delaunay).unwrap().triangles;
         let tb = triangulate_with(&b, Quality::Delaunay).unwrap().triangles;
         let (area, c) = area_and_centroid(&a, &ta);
-        let disk = super::super::staged::disk_for(&a, area, c);
+        let disk = crate::morph::staged::disk_for(&a, area, c);
         // A's triangulation on B: some triangles are inverted there; the
         // target is an immersion anyway.
         let mut angles = TargetAngles::default();
@@ -339,7 +339,7 @@ mod tests {
             &mut TargetAngles::default(),
         )
         .unwrap();
-        let diag = crate::morph::compatible::tests::bbox_diag(&b);
+        let diag = crate::morph::propagate::compatible::tests::bbox_diag(&b);
         for (p, q) in t.iter().zip(&b) {
             assert!((*p - *q).length() < 1e-9 * diag);
         }

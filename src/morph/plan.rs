@@ -1,14 +1,14 @@
 //! Morphing two curves end to end: equal vertex counts, triangulation,
 //! correspondence, then the morph (docs/design.md §5–7).
 
-use super::flips::crossings_per_shift;
-use super::staged::{Limit, SideInput};
-use super::{Fallback, Morph};
-use super::{MorphError, MorphOptions, Staged, ThirdVertexPath};
 use crate::correspond::{insert_vertices, resample_arc_length, shift_triangles};
+use crate::flip::sequence::crossings_per_shift;
 use crate::geom::Point;
 use crate::geom::polygon::min_triangle_angle as min_angle;
 use crate::immersion::NotSelfOverlapping;
+use crate::morph::staged::{Limit, SideInput};
+use crate::morph::{Fallback, Morph};
+use crate::morph::{MorphError, MorphOptions, Staged, ThirdVertexPath};
 use crate::quality::{Quality, triangulate_with};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -319,7 +319,7 @@ impl std::str::FromStr for Correspondence {
         let names: Vec<&str> = offered.iter().map(|c| c.as_str()).collect();
         match Correspondence::ALL.into_iter().find(|c| c.as_str() == s) {
             Some(c) if offered.contains(&c) => Ok(c),
-            Some(c) => Err(super::paths::experimental(
+            Some(c) => Err(crate::morph::propagate::paths::experimental(
                 "correspondence",
                 c.as_str(),
                 &names,
@@ -404,7 +404,7 @@ pub(crate) fn choose_shift(
     }
 }
 
-/// What [`morph_curves`] (and [`super::Tween`]) did.
+/// What [`morph_curves`] (and [`crate::morph::Tween`]) did.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MorphReport {
     /// Vertices of each curve after equalising counts.
@@ -459,7 +459,7 @@ fn check_fractions(fractions: &[f64]) -> Result<(), CurveMorphError> {
 /// shift matches their vertices; each curve is then staged toward the
 /// other's triangulation (docs/design.md §7) and the side that gets there first
 /// is used, so `morph_curves(a, b)` is `morph_curves(b, a)` reversed. This
-/// is a loop over [`super::Tween::frame`]; build a [`super::Tween`] to ask
+/// is a loop over [`crate::morph::Tween::frame`]; build a [`crate::morph::Tween`] to ask
 /// for frames one at a time.
 ///
 /// # Errors
@@ -473,7 +473,7 @@ pub fn morph_curves(
     options: &CurveMorphOptions,
 ) -> Result<(MorphReport, Morph), CurveMorphError> {
     check_fractions(fractions)?;
-    let tween = super::Tween::new(a, b, options)?;
+    let tween = crate::morph::Tween::new(a, b, options)?;
     let morph = tween.morph(fractions)?;
     let mut report = tween.report().clone();
     report.fallbacks.clone_from(&morph.fallbacks);

@@ -20,7 +20,7 @@
 //!   angles once (a local unblock); after that the disk finishes the job.
 //! - **Disk** intermediate (Mukherjee & Gopi §6.2): a convex disk with the
 //!   curve's area; flips follow the insertion sequence of
-//!   [`super::flips::flip_sequence`]. At the disk every flip is valid, so
+//!   [`crate::flip::sequence::flip_sequence`]. At the disk every flip is valid, so
 //!   the procedure always finishes.
 //!
 //! Recovery instead of stopping: a leg whose sampled frame fails the exact
@@ -28,14 +28,16 @@
 //! that cannot be laid out or that no path reaches hands over to the disk;
 //! every such step is recorded as a [`Fallback`].
 
-use super::Fallback;
-use super::flips::{Flip, FlipTriangulation, flip_sequence, gate};
-use super::target::{Candidates, TargetAngles, target_shape};
-use super::{Compatible, CompatibleError, MorphError, ThirdVertexPath, area_and_centroid};
+pub(crate) mod target;
+
 use crate::flip::canonical;
+use crate::flip::sequence::{Flip, FlipTriangulation, flip_sequence, gate};
 use crate::geom::Point;
 use crate::geom::polygon::{min_triangle_angle as min_angle, signed_area};
 use crate::immersion::{check, check_triangles};
+use crate::morph::Fallback;
+use crate::morph::staged::target::{Candidates, TargetAngles, target_shape};
+use crate::morph::{Compatible, CompatibleError, MorphError, ThirdVertexPath, area_and_centroid};
 use crate::tree::{DualTree, RootChoice, disk_positions};
 
 /// Step of the walk along one leg, in the leg's own parameter.
@@ -443,7 +445,7 @@ pub(crate) struct SideInput<'a> {
     pub(crate) final_path: ThirdVertexPath,
     pub(crate) root: RootChoice,
     pub(crate) margin: f64,
-    pub(crate) intermediate: super::Intermediate,
+    pub(crate) intermediate: crate::morph::Intermediate,
     /// The gate's angle floor on the target route.
     pub(crate) floor: f64,
     /// The largest vertex move allowed between checked samples (samples
@@ -569,7 +571,7 @@ impl Staged {
         let mut target_angles = TargetAngles::default();
         let mut mode = Mode::Target;
         let mut order = FlipOrder::Gain(Candidates::new(&cur, &goal));
-        if inp.intermediate == super::Intermediate::Disk {
+        if inp.intermediate == crate::morph::Intermediate::Disk {
             (mode, order) = Self::to_disk(&x, &cur, goal_tris);
             st.used_disk = true;
         }
@@ -662,7 +664,7 @@ impl Staged {
                 st.used_disk = true;
             }
         }
-        st.u_star = if st.used_disk && inp.intermediate == super::Intermediate::Disk {
+        st.u_star = if st.used_disk && inp.intermediate == crate::morph::Intermediate::Disk {
             if st.flips == 0 { 0.0 } else { 1.0 - remaining }
         } else {
             st.legs.len() as f64
@@ -1026,7 +1028,7 @@ pub(crate) fn moves(a: &[Point], b: &[Point]) -> (f64, f64) {
 mod tests {
     use super::*;
     use crate::morph::Intermediate;
-    use crate::morph::compatible::tests::spiral_strip;
+    use crate::morph::propagate::compatible::tests::spiral_strip;
     use crate::quality::{Quality, triangulate_with};
 
     #[test]

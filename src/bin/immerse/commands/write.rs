@@ -1,0 +1,88 @@
+//! Writing the frames of a morph or an animation in the format asked
+//! for, and the image style and play mode of `immerse morph`: shared by
+//! `morph`, its drawings and `animate`.
+
+use super::keyed::{self, Played};
+use super::progress_bar;
+use crate::args::{FormatArg, MorphArgs};
+use crate::output;
+use anyhow::Context;
+use immerse_render as render;
+use std::path::Path;
+
+/// The image style of `immerse morph`.
+pub(crate) fn style(args: &MorphArgs) -> render::Style {
+    render::Style::DEFAULT
+        .with_size(args.size.0, args.size.1)
+        .with_wireframe(args.wireframe)
+        .with_onion_skin(args.onion)
+}
+
+/// How `immerse morph`'s animations play.
+pub(crate) fn looping(args: &MorphArgs) -> render::Loop {
+    if args.ping_pong {
+        render::Loop::PingPong
+    } else if args.once {
+        render::Loop::Once
+    } else {
+        render::Loop::Loop
+    }
+}
+
+/// Writes rendered frames to `out` as `images` says, with a progress bar.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "plain glue between CLI options and the renderer"
+)]
+pub(crate) fn write_frames(
+    frames: &[render::Frame],
+    keys: Option<&Played>,
+    out: &Path,
+    images: super::ImageOutput,
+    style: &render::Style,
+    fps: f64,
+    looping: render::Loop,
+    force: bool,
+    quiet: bool,
+) -> anyhow::Result<()> {
+    let opts = render::Output::DEFAULT.with_force(force);
+    let total = match images.format {
+        FormatArg::Gif => looping.sequence(frames.len()).len(),
+        _ => frames.len(),
+    };
+    let bar = progress_bar(total as u64, "render", quiet);
+    let progress = |done: usize| bar.set_position(done as u64);
+    match images.format {
+        FormatArg::Png => {
+            render::write_png_sequence(frames, out, style, &opts, &progress)?;
+        }
+        FormatArg::Svg => {
+            render::write_svg_sequence(frames, out, style, &opts, &progress)?;
+        }
+        FormatArg::Gif => render::write_gif(frames, out, style, fps, looping, &opts, &progress)?,
+        FormatArg::AnimatedSvg | FormatArg::Lottie if keys.is_some() => {
+            let kind = if images.format == FormatArg::Lottie {
+                keyed::Kind::Lottie
+            } else {
+                keyed::Kind::AnimatedSvg
+            };
+            let played = keys.expect("matched on is_some");
+            let view = render::View::fit(frames, style);
+            let written = keyed::write(kind, played, view, style, fps, looping)
+                .with_context(|| format!("-o {}", out.display()))?;
+            keyed::save(&written, out, force)?;
+            if !quiet {
+                output::note(&keyed::describe(kind, &written, written.text.len()));
+            }
+        }
+        FormatArg::AnimatedSvg => {
+            render::write_animated_svg(frames, out, style, fps, looping, &opts)?;
+        }
+        FormatArg::Sheet => {
+            render::write_contact_sheet(frames, out, style, images.columns, &opts)?;
+        }
+        FormatArg::Lottie => render::write_lottie(frames, out, style, fps, looping, &opts)?,
+    }
+    bar.finish_and_clear();
+    Ok(())
+}

@@ -325,7 +325,7 @@ pub(crate) const KEY_AREA_TOLERANCE: f64 = 0.01;
 const MAX_KEY_SPLITS: usize = 64;
 
 /// Finest split of a segment between keys, in the leg's own parameter.
-const MIN_KEY_STEP: f64 = 1.0 / (1u64 << 30) as f64;
+const MIN_KEY_STEP: f64 = 1.0 / (1u64 << 44) as f64;
 
 /// A staged path from one curve to another (in the first curve's labels).
 #[derive(Clone, Debug)]

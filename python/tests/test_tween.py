@@ -68,6 +68,13 @@ def test_random_star_pairs(rng):
         assert all(any((row == p).all() for row in first) for p in a)
 
 
+def test_experimental_options_are_refused_naming_the_offered_ones():
+    with pytest.raises(ValueError, match="'polar' is experimental.*rigid, hybrid, straight"):
+        immerse.Tween(SPIRAL, CURL, path="polar")
+    with pytest.raises(ValueError, match="'identity' is experimental.*corners, min-flips, best"):
+        immerse.Tween(SPIRAL, CURL, correspondence="identity")
+
+
 def test_report_and_repr():
     tween = immerse.Tween(SPIRAL, CURL, path="hybrid", correspondence="min-flips")
     r = tween.report

@@ -370,7 +370,7 @@ fn stretch_ratio(from: [Point; 2], to: [Point; 2]) -> Option<f64> {
 /// Numerical rank of the matrix whose columns are `cols`, by one-sided
 /// Jacobi SVD (accurate for small singular values, unlike the Gram
 /// matrix): the number of singular values above `tol` × the largest.
-pub fn numerical_rank(cols: &[Vec<f64>], tol: f64) -> usize {
+pub(crate) fn numerical_rank(cols: &[Vec<f64>], tol: f64) -> usize {
     let mut a: Vec<Vec<f64>> = cols.to_vec();
     let k = a.len();
     if k == 0 {

@@ -116,15 +116,6 @@ impl Player {
         }
     }
 
-    /// The unit roundoff u of the player's arithmetic (0 for exact).
-    pub fn unit_roundoff(self) -> f64 {
-        match self {
-            Player::Exact => 0.0,
-            Player::F64 => f64::EPSILON / 2.0,
-            Player::F32 => f64::from(f32::EPSILON) / 2.0,
-        }
-    }
-
     /// log₂ of 8u: δ_v = 2^shift · m_v exactly.
     fn shift(self) -> Option<i32> {
         match self {
@@ -167,15 +158,6 @@ impl SParam {
             lo: x,
             hi: x,
             exact: Some(exact::Alg::from_f64(x).as_fraction().unwrap_or_default()),
-        }
-    }
-
-    /// The middle of the bracket (the value itself when exact in `f64`).
-    pub fn approx(&self) -> f64 {
-        if self.lo == self.hi {
-            self.lo
-        } else {
-            self.lo + (self.hi - self.lo) / 2.0
         }
     }
 }

@@ -23,7 +23,7 @@ use crate::quality::{Quality, triangulate_with};
 
 /// Most points of a shape whose self-overlap [`certify_motion`] decides
 /// at a rational s (the exact DP's tables take O(n²) memory).
-pub const MAX_EXACT_DP_POINTS: usize = 3000;
+pub(crate) const MAX_EXACT_DP_POINTS: usize = 3000;
 
 /// Limits of [`certify_motion`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -15,7 +15,8 @@ pub enum MatchMode {
     /// drawing appear or vanish.
     Order,
     /// The assignment of least total cost (position, size, outline),
-    /// where leaving a shape unmatched costs [`UNMATCHED_COST`].
+    /// where leaving a shape unmatched costs 1 (the cost of a shape's own
+    /// size).
     #[default]
     Auto,
 }
@@ -23,7 +24,7 @@ pub enum MatchMode {
 /// What leaving one shape without a partner costs in [`MatchMode::Auto`]:
 /// a pair whose cost is above twice this is split into a vanishing and
 /// an appearing shape.
-pub const UNMATCHED_COST: f64 = 1.0;
+pub(crate) const UNMATCHED_COST: f64 = 1.0;
 
 /// Weight of the size term (|ln| of the ratio of the square roots of the
 /// areas) in a pair's cost.
@@ -90,7 +91,7 @@ pub fn match_shapes(a: &Drawing, b: &Drawing, mode: MatchMode) -> Matching {
 }
 
 /// The least-cost assignment, each shape matched or left alone at
-/// [`UNMATCHED_COST`]: Kuhn–Munkres on the square matrix of size
+/// 1 (`UNMATCHED_COST`): Kuhn–Munkres on the square matrix of size
 /// `na + nb` whose extra rows and columns stand for "no partner".
 fn assign(fa: &[Features], fb: &[Features]) -> Vec<(usize, usize)> {
     let (na, nb) = (fa.len(), fb.len());

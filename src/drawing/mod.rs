@@ -28,7 +28,7 @@ mod style;
 mod svg;
 mod tween;
 
-pub use matching::{MatchMode, Matching, UNMATCHED_COST, match_shapes};
+pub use matching::{MatchMode, Matching, match_shapes};
 pub use style::{Color, FillRule, Style};
 pub use tween::{
     DrawingFrame, DrawingTween, DrawingTweenError, FrameShape, GROWN_SCALE, ShapeKeys, ShapeRole,

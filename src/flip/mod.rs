@@ -108,7 +108,7 @@ impl FlipTriangulation {
     }
 
     /// True when `(a, b)` is an edge (side or diagonal).
-    pub fn has_edge(&self, a: u32, b: u32) -> bool {
+    pub(crate) fn has_edge(&self, a: u32, b: u32) -> bool {
         self.edges.contains_key(&key(a, b))
     }
 

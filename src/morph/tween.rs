@@ -464,7 +464,7 @@ impl Tween {
     /// `h ×` [`Tween::path_length`]. How fast the fastest vertex leaves
     /// and arrives when frames are evenly paced; sequences match these at
     /// their keys. 1 where nothing moves.
-    pub fn end_rates(&self, h: f64) -> (f64, f64) {
+    pub(crate) fn end_rates(&self, h: f64) -> (f64, f64) {
         let h = if h.is_finite() {
             h.clamp(1e-9, 1.0)
         } else {
@@ -528,7 +528,10 @@ impl Tween {
     /// # Errors
     ///
     /// As [`Tween::frame`].
-    pub fn frame_with_fallback(&self, t: f64) -> Result<(Frame, Option<Fallback>), MorphError> {
+    pub(crate) fn frame_with_fallback(
+        &self,
+        t: f64,
+    ) -> Result<(Frame, Option<Fallback>), MorphError> {
         if !(0.0..=1.0).contains(&t) {
             return Err(MorphError::Fraction(t));
         }

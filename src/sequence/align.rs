@@ -66,7 +66,7 @@ fn diagonal(points: &[Point]) -> f64 {
 /// A hinted point this close to a vertex (as a fraction of the key's
 /// bounding-box diagonal) is that vertex: a vertex inserted closer would
 /// only make a sliver.
-pub const HINT_SNAP: f64 = 1e-3;
+pub(crate) const HINT_SNAP: f64 = 1e-3;
 
 /// The place at parameter `u` of edge `e`, snapped to a vertex when it
 /// lies within `snap` of one.

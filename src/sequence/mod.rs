@@ -26,7 +26,6 @@
 mod align;
 pub mod timing;
 
-pub use align::HINT_SNAP;
 pub use timing::{
     Ease, KeySpeed, KeyTiming, Sample, Schedule, Timing, key_speeds, schedule_lengths,
 };
@@ -68,7 +67,7 @@ pub enum HintAt {
     Vertex(usize),
     /// The point of the curve nearest to this one (it must lie within
     /// [`SequenceOptions::hint_tolerance`] of the curve); the vertex there
-    /// or within [`HINT_SNAP`] of the key's size, else a vertex inserted
+    /// or within 10⁻³ of the key's size, else a vertex inserted
     /// on its edge.
     Point(Point),
     /// The point at this fraction of the arc length from vertex 0, along

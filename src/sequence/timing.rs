@@ -14,7 +14,7 @@
 //! that makes the speed continuous where one free segment meets the
 //! next: segment `j + 1` starts as fast as segment `j` ends, counting the
 //! easing's slope at each end (1 for linear). A key with a hold, a time,
-//! or an easing that stops there (slope below [`STOP_SLOPE`]) starts the
+//! or an easing that stops there (slope below 0.05) starts the
 //! chain afresh. Steps are whole numbers, handed out one at a time to the
 //! segment that is currently fastest (the largest travel per step), so
 //! the speeds stay as even as whole steps allow. Without a total, a run
@@ -29,7 +29,7 @@ use crate::frames::Frame;
 use std::sync::Arc;
 
 /// An easing slope below this at a segment's end counts as a stop.
-pub const STOP_SLOPE: f64 = 0.05;
+pub(crate) const STOP_SLOPE: f64 = 0.05;
 
 /// Seconds per segment of a run of free segments whose end no time,
 /// duration or total fixes.
@@ -37,7 +37,7 @@ pub const DEFAULT_SECONDS_PER_SEGMENT: f64 = 2.0;
 
 /// The frame step, as a share of a segment's pace, over which its speed
 /// at a key is first measured (see [`crate::morph::Tween::end_rates`]).
-pub const RATE_WINDOW: f64 = 0.02;
+pub(crate) const RATE_WINDOW: f64 = 0.02;
 
 /// Most frames a sequence may have.
 pub const MAX_FRAMES: usize = 100_000;
@@ -72,7 +72,7 @@ impl Ease {
 
     /// The slope at x = 0 and at x = 1 (1 and 1 for linear), by a
     /// one-sided difference.
-    pub fn end_slopes(&self) -> (f64, f64) {
+    pub(crate) fn end_slopes(&self) -> (f64, f64) {
         if self.is_linear() {
             return (1.0, 1.0);
         }

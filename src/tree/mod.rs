@@ -180,7 +180,7 @@ impl DualTree {
     }
 
     /// Hop distances from `from` to every triangle.
-    pub fn distances(&self, from: usize) -> Vec<usize> {
+    pub(crate) fn distances(&self, from: usize) -> Vec<usize> {
         let mut dist = vec![usize::MAX; self.triangles.len()];
         let mut queue = VecDeque::from([from]);
         dist[from] = 0;
@@ -299,7 +299,7 @@ pub fn root_triangle(tree: &DualTree, points: &[Point], choice: RootChoice) -> u
 /// curve's edge lengths (vertex 0 at angle 0, counter-clockwise), each edge
 /// given at least 1/(4n) of the circle so that no two positions coincide
 /// however short an edge is.
-pub fn disk_positions(points: &[Point]) -> Vec<Point> {
+pub(crate) fn disk_positions(points: &[Point]) -> Vec<Point> {
     let n = points.len();
     let raw: Vec<f64> = (0..n)
         .map(|i| (points[(i + 1) % n] - points[i]).length())

@@ -693,7 +693,7 @@ impl Staged {
 
     /// The mean over vertices of the distance each travels along the whole
     /// path (over the checked samples).
-    pub fn mean_travel(&self) -> f64 {
+    pub(crate) fn mean_travel(&self) -> f64 {
         self.legs.iter().map(|l| l.mean_travel).sum()
     }
 }

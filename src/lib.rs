@@ -31,7 +31,32 @@
 //!   progress and argument-parsing dependencies. Without it the library has
 //!   no rendering or CLI dependency.
 //!
-//! ## Example
+//! ## The front door
+//!
+//! [`Tween`] morphs two keys, [`Sequence`] many; both plan once and then
+//! give their certified keyframes (the animation is their piecewise-linear
+//! interpolation, every segment certified exactly, docs/design.md §13)
+//! and verified frames at any t:
+//!
+//! ```
+//! use immerse::{CurveMorphOptions, Key, Point, Sequence, SequenceOptions, Tween};
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let square = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(|(x, y)| Point::new(x, y));
+//! let diamond = [(0.5, -0.2), (1.2, 0.5), (0.5, 1.2), (-0.2, 0.5)].map(|(x, y)| Point::new(x, y));
+//! let tween = Tween::new(&square, &diamond, &CurveMorphOptions::DEFAULT)?;
+//! assert!(tween.is_certified());
+//! let keys = tween.keyframes();
+//! assert!(keys.len() >= 2 && keys[0].t == 0.0 && keys[keys.len() - 1].t == 1.0);
+//! assert!(tween.frame(0.5)?.is_immersion());
+//!
+//! let chain = [Key::new("a", square.to_vec()), Key::new("b", diamond.to_vec()), Key::new("c", square.to_vec())];
+//! let sequence = Sequence::new(&chain, &[], &SequenceOptions::DEFAULT)?;
+//! assert_eq!(sequence.key_count(), 3);
+//! # Ok(())
+//! # }
+//! ```
+//!
+//! ## Reading a curve
 //!
 //! ```
 //! use immerse::curve::Curve;
@@ -70,4 +95,6 @@ pub use curve::Curve;
 pub use error::{Error, Result};
 pub use geom::Point;
 pub use immersion::{Immersion, ImmersionDefect, NotSelfOverlapping, triangulate};
+pub use morph::{CurveMorphOptions, Keyframe, Tween};
 pub use quality::{Quality, improve, triangulate_maxmin, triangulate_with};
+pub use sequence::{Key, Sequence, SequenceOptions};

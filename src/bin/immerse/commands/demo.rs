@@ -51,29 +51,23 @@ pub(crate) fn run(args: &DemoArgs) -> anyhow::Result<Outcome> {
     // The folder is ours (checked above), so replacing our own files is
     // fine; frames of an earlier, longer run are removed.
     let image = |format| super::ImageOutput { format, columns: 0 };
-    write_frames(
-        &frames,
-        None,
-        dir,
-        image(FormatArg::Png),
-        &style,
-        24.0,
-        render::Loop::PingPong,
-        true,
-        args.quiet,
-    )?;
     let gif = dir.join("demo.gif");
-    write_frames(
-        &frames,
-        None,
-        &gif,
-        image(FormatArg::Gif),
-        &style,
-        24.0,
-        render::Loop::PingPong,
-        true,
-        args.quiet,
-    )?;
+    for (out, format) in [
+        (dir.as_path(), FormatArg::Png),
+        (gif.as_path(), FormatArg::Gif),
+    ] {
+        write_frames(
+            &frames,
+            None,
+            out,
+            image(format),
+            &style,
+            24.0,
+            render::Loop::PingPong,
+            true,
+            args.quiet,
+        )?;
+    }
     if let Some(made) = made {
         made.keep();
     }

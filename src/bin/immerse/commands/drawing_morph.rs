@@ -76,7 +76,7 @@ pub(crate) fn run(
             notices.push(format!("{}: {n}", path.display()));
         }
     }
-    if !args.quiet {
+    if !args.run.quiet {
         for n in &notices {
             output::note(n);
         }
@@ -102,7 +102,7 @@ pub(crate) fn run(
             shapes: &keys,
             frames: &frames,
         };
-        super::write_json(json, &report, false, args.force)?;
+        super::write_json(json, &report, false, args.run.force)?;
     }
     if let (Some(out), Some(images)) = (&args.output, images) {
         let rendered: Vec<render::Frame> = frames.iter().map(render_frame).collect();
@@ -120,13 +120,13 @@ pub(crate) fn run(
             out,
             images,
             &super::write::style(args),
-            args.fps,
+            args.image.fps,
             looping,
-            args.force,
-            args.quiet,
+            args.run.force,
+            args.run.quiet,
         )?;
     }
-    if !args.quiet {
+    if !args.run.quiet {
         output::note(&summary(&a, &b, &matching));
         output::note(&format!(
             "{} shapes, {} frames computed and verified (every shape of every frame an immersed disk) in {:.0} ms; keys per shape: {} ({})",
@@ -335,38 +335,13 @@ pub(crate) fn write_keyed(
     fps: f64,
     looping: render::Loop,
 ) -> anyhow::Result<Written> {
-    let shapes: Vec<Vec<Vec<render::Frame>>> = play
-        .scenes
-        .iter()
-        .map(|scene| {
-            scene
-                .tracks
-                .iter()
-                .map(|t| {
-                    t.keys
-                        .iter()
-                        .map(|k| {
-                            render::Frame::from_triangles(
-                                super::plain_points(&k.points),
-                                Vec::new(),
-                            )
-                        })
-                        .collect()
-                })
-                .collect()
-        })
-        .collect();
-    let times: Vec<Vec<Vec<f64>>> = play
-        .scenes
-        .iter()
-        .map(|scene| {
-            scene
-                .tracks
-                .iter()
-                .map(|t| t.keys.iter().map(|k| k.t).collect())
-                .collect()
-        })
-        .collect();
+    let shapes: Vec<Vec<Vec<render::Frame>>> = per_track(play, |t| {
+        t.keys
+            .iter()
+            .map(|k| render::Frame::from_triangles(super::plain_points(&k.points), Vec::new()))
+            .collect()
+    });
+    let times: Vec<Vec<Vec<f64>>> = per_track(play, |t| t.keys.iter().map(|k| k.t).collect());
     let tracks: Vec<Vec<render::Track<'_>>> = play
         .scenes
         .iter()
@@ -427,6 +402,14 @@ pub(crate) fn write_keyed(
         .flat_map(|s| s.tracks.iter().map(|t| t.keys.len()))
         .collect();
     Ok(written)
+}
+
+/// `f` of every track of `play`, scene by scene.
+fn per_track<T>(play: &DrawingPlay, f: impl Fn(&ShapeTrack) -> T) -> Vec<Vec<T>> {
+    play.scenes
+        .iter()
+        .map(|scene| scene.tracks.iter().map(&f).collect())
+        .collect()
 }
 
 /// Writes a drawing animation's outputs: Lottie and animated SVG from

@@ -4,29 +4,41 @@
 
 use super::keyed::{self, Played};
 use super::progress_bar;
-use crate::args::{FormatArg, MorphArgs};
+use crate::args::{FormatArg, MorphArgs, PlayArgs};
 use crate::output;
 use anyhow::Context;
 use immerse_render as render;
 use std::path::Path;
 
+impl PlayArgs {
+    /// The image style at `size` with these flags' wireframe and onion skin.
+    pub(crate) fn style(&self, size: (u32, u32)) -> render::Style {
+        render::Style::DEFAULT
+            .with_size(size.0, size.1)
+            .with_wireframe(self.wireframe)
+            .with_onion_skin(self.onion)
+    }
+
+    /// How the animation plays when a flag says so (--ping-pong, --once).
+    pub(crate) fn looping(&self) -> Option<render::Loop> {
+        if self.ping_pong {
+            Some(render::Loop::PingPong)
+        } else if self.once {
+            Some(render::Loop::Once)
+        } else {
+            None
+        }
+    }
+}
+
 /// The image style of `immerse morph`.
 pub(crate) fn style(args: &MorphArgs) -> render::Style {
-    render::Style::DEFAULT
-        .with_size(args.size.0, args.size.1)
-        .with_wireframe(args.wireframe)
-        .with_onion_skin(args.onion)
+    args.play.style(args.image.size)
 }
 
 /// How `immerse morph`'s animations play.
 pub(crate) fn looping(args: &MorphArgs) -> render::Loop {
-    if args.ping_pong {
-        render::Loop::PingPong
-    } else if args.once {
-        render::Loop::Once
-    } else {
-        render::Loop::Loop
-    }
+    args.play.looping().unwrap_or(render::Loop::Loop)
 }
 
 /// Writes rendered frames to `out` as `images` says, with a progress bar.

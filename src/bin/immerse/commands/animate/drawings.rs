@@ -268,21 +268,7 @@ fn write_output(
 ) -> anyhow::Result<()> {
     let fps = schedule.fps;
     if image.format == FormatArg::Sheet {
-        // One row per segment: the key, in-betweens, the next key.
-        let k = args.sheet_inbetweens as usize;
-        let mut picked = Vec::new();
-        for s in 0..schedule.steps.len() {
-            let start = schedule.key_frames[s] + schedule.holds[s];
-            let end = schedule.key_frames[s + 1];
-            for i in 0..=k + 1 {
-                let f = start as f64 + (end - start) as f64 * i as f64 / (k + 1) as f64;
-                picked.push(frames[f.round() as usize].clone());
-            }
-        }
-        let sheet = ImageOutput {
-            format: FormatArg::Sheet,
-            columns: k + 2,
-        };
+        let (picked, sheet) = super::sheet_rows(frames, schedule, args.sheet_inbetweens);
         return crate::commands::write::write_frames(
             &picked, None, out, sheet, style, fps, looping, args.force, args.quiet,
         );

@@ -203,13 +203,10 @@ pub(crate) fn run(args: &AnimateArgs) -> anyhow::Result<Outcome> {
 /// How the animation plays: the command line's choice, else the
 /// timeline's, else looping.
 fn looping_of(args: &AnimateArgs, tl: &Timeline) -> render::Loop {
-    if args.ping_pong {
-        render::Loop::PingPong
-    } else if args.once {
-        render::Loop::Once
-    } else {
-        tl.looping.unwrap_or(render::Loop::Loop)
-    }
+    args.play
+        .looping()
+        .or(tl.looping)
+        .unwrap_or(render::Loop::Loop)
 }
 
 /// The timing of keys with these specs: the timeline's times, holds,
@@ -451,10 +448,32 @@ struct SequenceJson<'a> {
 
 /// The image style of `animate`'s options.
 fn image_style(args: &AnimateArgs) -> render::Style {
-    render::Style::DEFAULT
-        .with_size(args.size.0, args.size.1)
-        .with_wireframe(args.wireframe)
-        .with_onion_skin(args.onion)
+    args.play.style(args.size)
+}
+
+/// A contact sheet of `frames` with one row per segment: the key,
+/// `in_betweens` frames evenly between its hold's end and the next key,
+/// and that key; with the sheet's layout.
+fn sheet_rows<T: Clone>(
+    frames: &[T],
+    schedule: &Schedule,
+    in_betweens: u32,
+) -> (Vec<T>, super::ImageOutput) {
+    let k = in_betweens as usize;
+    let mut picked = Vec::new();
+    for s in 0..schedule.steps.len() {
+        let start = schedule.key_frames[s] + schedule.holds[s];
+        let end = schedule.key_frames[s + 1];
+        for i in 0..=k + 1 {
+            let f = start as f64 + (end - start) as f64 * i as f64 / (k + 1) as f64;
+            picked.push(frames[f.round() as usize].clone());
+        }
+    }
+    let sheet = super::ImageOutput {
+        format: FormatArg::Sheet,
+        columns: k + 2,
+    };
+    (picked, sheet)
 }
 
 #[allow(
@@ -473,22 +492,8 @@ fn write_output(
 ) -> anyhow::Result<()> {
     let style = image_style(args);
     if image.format == FormatArg::Sheet {
-        // One row per segment: the key, in-betweens, the next key.
-        let k = args.sheet_inbetweens as usize;
-        let mut picked = Vec::new();
-        for s in 0..schedule.steps.len() {
-            let start = schedule.key_frames[s] + schedule.holds[s];
-            let end = schedule.key_frames[s + 1];
-            for i in 0..=k + 1 {
-                let f = start as f64 + (end - start) as f64 * i as f64 / (k + 1) as f64;
-                picked.push(morph.frames[f.round() as usize].clone());
-            }
-        }
+        let (picked, sheet) = sheet_rows(&morph.frames, schedule, args.sheet_inbetweens);
         let frames = super::render_frames(&picked);
-        let sheet = super::ImageOutput {
-            format: FormatArg::Sheet,
-            columns: k + 2,
-        };
         return write_frames(
             &frames, None, out, sheet, &style, fps, looping, args.force, args.quiet,
         );
@@ -564,12 +569,12 @@ fn summary(
 /// builder the morph command and the server use too).
 pub(crate) fn plan_options(args: &AnimateArgs) -> anyhow::Result<CurveMorphOptions> {
     crate::commands::morph::PlanFlags {
-        path: args.path,
+        path: args.motion.path,
         correspondence: args.correspondence,
         quality: args.quality,
         counts: crate::args::CountsArg::Insert,
         intermediate: args.intermediate,
-        key_tolerance: args.key_tolerance,
+        key_tolerance: args.motion.key_tolerance,
     }
     .options()
     .map_err(anyhow::Error::msg)

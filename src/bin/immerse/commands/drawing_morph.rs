@@ -3,6 +3,7 @@
 
 use super::ImageOutput;
 use super::keyed::{self, Kind, Outline, Written};
+use super::write::Writing;
 use crate::Outcome;
 use crate::args::{FormatArg, MatchArg, MorphArgs};
 use crate::output;
@@ -107,24 +108,14 @@ pub(crate) fn run(
     if let (Some(out), Some(images)) = (&args.output, images) {
         let rendered: Vec<render::Frame> = frames.iter().map(render_frame).collect();
         let samples: Vec<(usize, f64)> = times.iter().map(|&t| (0, t)).collect();
-        let looping = super::write::looping(args);
+        let writing = super::write::writing(args);
         let play = DrawingPlay::new(
             &[keys.as_slice()],
             &samples,
-            looping,
+            writing.looping,
             easing != render::Easing::Linear,
         );
-        write_images(
-            &rendered,
-            &play,
-            out,
-            images,
-            &super::write::style(args),
-            args.image.fps,
-            looping,
-            args.run.force,
-            args.run.quiet,
-        )?;
+        write_images(&rendered, &play, out, images, &writing)?;
     }
     if !args.run.quiet {
         output::note(&summary(&a, &b, &matching));
@@ -415,35 +406,29 @@ fn per_track<T>(play: &DrawingPlay, f: impl Fn(&ShapeTrack) -> T) -> Vec<Vec<T>>
 /// Writes a drawing animation's outputs: Lottie and animated SVG from
 /// the certified keys ([`write_keyed`]), every other format from the
 /// rendered frames.
-#[allow(
-    clippy::too_many_arguments,
-    reason = "plain glue between CLI options and the renderer"
-)]
 pub(crate) fn write_images(
     frames: &[render::Frame],
     play: &DrawingPlay,
     out: &std::path::Path,
     images: ImageOutput,
-    style: &render::Style,
-    fps: f64,
-    looping: render::Loop,
-    force: bool,
-    quiet: bool,
+    writing: &Writing,
 ) -> anyhow::Result<()> {
     let kind = match images.format {
         FormatArg::Lottie => Kind::Lottie,
         FormatArg::AnimatedSvg => Kind::AnimatedSvg,
-        _ => {
-            return super::write::write_frames(
-                frames, None, out, images, style, fps, looping, force, quiet,
-            );
-        }
+        _ => return super::write::write_frames(frames, None, out, images, writing),
     };
+    let Writing {
+        ref style,
+        fps,
+        looping,
+        ..
+    } = *writing;
     let view = render::View::fit(frames, style);
     let written = write_keyed(kind, play, view, style, fps, looping)
         .with_context(|| format!("-o {}", out.display()))?;
-    keyed::save(&written, out, force)?;
-    if !quiet {
+    keyed::save(&written, out, writing.force)?;
+    if !writing.quiet {
         output::note(&keyed::describe(kind, &written, written.text.len()));
     }
     Ok(())

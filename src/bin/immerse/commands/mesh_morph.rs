@@ -1,7 +1,7 @@
 //! `immerse mesh-morph`: morphs between compatible planar tilings.
 
 use super::plain_points;
-use super::write::write_frames;
+use super::write::{Writing, write_frames};
 use crate::Outcome;
 use crate::args::{MeshMorphArgs, MethodArg, WeightsArg};
 use crate::output;
@@ -154,17 +154,14 @@ pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
                 ..render::Frame::default()
             })
             .collect();
-        write_frames(
-            &plain,
-            None,
-            out,
-            images,
-            &style(args),
-            args.image.fps,
-            render::Loop::Loop,
-            args.run.force,
-            args.run.quiet,
-        )?;
+        let writing = Writing {
+            style: style(args),
+            fps: args.image.fps,
+            looping: render::Loop::Loop,
+            force: args.run.force,
+            quiet: args.run.quiet,
+        };
+        write_frames(&plain, None, out, images, &writing)?;
     }
     if !args.run.quiet {
         output::note(&format!(

@@ -315,11 +315,7 @@ fn write_images(
         Some(played),
         out,
         images,
-        &super::write::style(args),
-        args.image.fps,
-        super::write::looping(args),
-        args.run.force,
-        args.run.quiet,
+        &super::write::writing(args),
     )
 }
 

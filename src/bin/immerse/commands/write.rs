@@ -41,22 +41,44 @@ pub(crate) fn looping(args: &MorphArgs) -> render::Loop {
     args.play.looping().unwrap_or(render::Loop::Loop)
 }
 
-/// Writes rendered frames to `out` as `images` says, with a progress bar.
-#[allow(
-    clippy::too_many_arguments,
-    reason = "plain glue between CLI options and the renderer"
-)]
+/// How frames are written: their style, frame rate and play mode, whether
+/// existing files are replaced, and whether progress is quiet.
+#[derive(Clone, Debug)]
+pub(crate) struct Writing {
+    pub(crate) style: render::Style,
+    pub(crate) fps: f64,
+    pub(crate) looping: render::Loop,
+    pub(crate) force: bool,
+    pub(crate) quiet: bool,
+}
+
+/// How `immerse morph` writes its frames.
+pub(crate) fn writing(args: &MorphArgs) -> Writing {
+    Writing {
+        style: style(args),
+        fps: args.image.fps,
+        looping: looping(args),
+        force: args.run.force,
+        quiet: args.run.quiet,
+    }
+}
+
+/// Writes rendered frames to `out` as `images` and `writing` say, with a
+/// progress bar.
 pub(crate) fn write_frames(
     frames: &[render::Frame],
     keys: Option<&Played>,
     out: &Path,
     images: super::ImageOutput,
-    style: &render::Style,
-    fps: f64,
-    looping: render::Loop,
-    force: bool,
-    quiet: bool,
+    writing: &Writing,
 ) -> anyhow::Result<()> {
+    let Writing {
+        ref style,
+        fps,
+        looping,
+        force,
+        quiet,
+    } = *writing;
     let opts = render::Output::DEFAULT.with_force(force);
     let total = match images.format {
         FormatArg::Gif => looping.sequence(frames.len()).len(),

@@ -836,6 +836,49 @@ mod tests {
     }
 
     #[test]
+    fn shared_flags_keep_their_rules_and_help_per_command() {
+        for cmd in ["morph", "animate"] {
+            assert!(
+                Cli::try_parse_from(["immerse", cmd, "a", "b", "--ping-pong", "--once"]).is_err(),
+                "{cmd}"
+            );
+        }
+        let help = |cmd: &str, flag: &str| {
+            let mut cli = Cli::command();
+            let sub = cli.find_subcommand_mut(cmd).unwrap();
+            let arg = sub.get_arguments().find(|a| a.get_id() == flag).unwrap();
+            arg.get_help().unwrap().to_string()
+        };
+        assert_eq!(
+            help("morph", "onion"),
+            "Draw the source and target faintly behind every frame"
+        );
+        assert_eq!(
+            help("animate", "onion"),
+            "Draw the first and last key faintly behind every frame"
+        );
+        let cli = Cli::try_parse_from([
+            "immerse",
+            "mesh-morph",
+            "a",
+            "b",
+            "--size",
+            "30x20",
+            "--fps",
+            "12",
+            "-q",
+        ])
+        .unwrap();
+        let Command::MeshMorph(m) = cli.command else {
+            panic!("not mesh-morph")
+        };
+        assert_eq!(
+            (m.image.size, m.image.fps, m.run.quiet),
+            ((30, 20), 12.0, true)
+        );
+    }
+
+    #[test]
     fn morph_defaults_and_size() {
         let cli = Cli::try_parse_from(["immerse", "morph", "a.json", "b.json"]).unwrap();
         let Command::Morph(m) = cli.command else {

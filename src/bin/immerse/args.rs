@@ -184,6 +184,7 @@ pub(crate) enum SvgKeysArg {
 
 /// Arguments of `immerse animate`.
 #[derive(Debug, Args)]
+#[command(mut_arg("onion", |a| a.help("Draw the first and last key faintly behind every frame")))]
 pub(crate) struct AnimateArgs {
     /// The keys in order: two or more curve or drawing files, or one SVG
     /// whose shapes (or groups, or layers) are the keys; a group of
@@ -219,14 +220,9 @@ pub(crate) struct AnimateArgs {
     /// (keys without their own hold).
     #[arg(long, value_name = "SECONDS", allow_negative_numbers = true)]
     pub(crate) hold: Option<f64>,
-    /// How each triangle's third vertex travels.
-    #[arg(long, value_enum, default_value_t = PathArg::Rigid)]
-    pub(crate) path: PathArg,
-    /// How far the straight segment between two keyframes may stray from
-    /// the planned motion, as a fraction of the shape's diagonal (above 0,
-    /// at most 0.1); smaller gives more keys.
-    #[arg(long, value_name = "FRACTION", default_value_t = immerse::morph::KEY_TOLERANCE, value_parser = key_tolerance, allow_negative_numbers = true)]
-    pub(crate) key_tolerance: f64,
+    /// The path of the motion and the tolerance of its keys.
+    #[command(flatten)]
+    pub(crate) motion: MotionArgs,
     /// Triangulation quality of each key.
     #[arg(long, value_enum, default_value_t = QualityArg::Delaunay)]
     pub(crate) quality: QualityArg,
@@ -255,18 +251,9 @@ pub(crate) struct AnimateArgs {
     /// In-betweens per segment on a contact sheet, besides the two keys.
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(0..=50))]
     pub(crate) sheet_inbetweens: u32,
-    /// Play the animation forwards then backwards, repeating.
-    #[arg(long, conflicts_with = "once")]
-    pub(crate) ping_pong: bool,
-    /// Play the animation once instead of looping.
-    #[arg(long)]
-    pub(crate) once: bool,
-    /// Draw the triangulation's edges in images.
-    #[arg(long)]
-    pub(crate) wireframe: bool,
-    /// Draw the first and last key faintly behind every frame.
-    #[arg(long)]
-    pub(crate) onion: bool,
+    /// How the animation plays and what images draw.
+    #[command(flatten)]
+    pub(crate) play: PlayArgs,
     /// Replace existing output files (and write into a non-empty folder).
     #[arg(long)]
     pub(crate) force: bool,
@@ -422,24 +409,12 @@ pub(crate) struct MeshMorphArgs {
     /// .png sheet), PNG frames for a folder.
     #[arg(long, value_enum)]
     pub(crate) format: Option<FormatArg>,
-    /// Columns of a contact sheet; by default a nearly square grid.
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=10_000))]
-    pub(crate) columns: Option<u32>,
-    /// Image size in pixels, WIDTHxHEIGHT (each at most 8192).
-    #[arg(long, value_name = "WxH", default_value = "600x600", value_parser = parse_size)]
-    pub(crate) size: (u32, u32),
-    /// Frames per second of a GIF (at most 50: GIF delays are whole
-    /// hundredths of a second), animated SVG or Lottie, from 0.1 to 1000.
-    #[arg(long, default_value_t = 30.0)]
-    pub(crate) fps: f64,
-    /// Replace existing output files; write into a non-empty folder,
-    /// replacing frames and removing frame_N files of an earlier, longer
-    /// run.
-    #[arg(long)]
-    pub(crate) force: bool,
-    /// No progress bars or notices on stderr.
-    #[arg(short, long)]
-    pub(crate) quiet: bool,
+    /// The images' grid, size and speed.
+    #[command(flatten)]
+    pub(crate) image: ImageArgs,
+    /// Replacing outputs and quiet.
+    #[command(flatten)]
+    pub(crate) run: RunArgs,
 }
 
 /// Arguments of `immerse demo`.
@@ -623,14 +598,9 @@ pub(crate) struct MorphArgs {
     /// becomes which of the target (docs/design.md §2b).
     #[arg(long = "match", value_enum, default_value_t = MatchArg::Auto)]
     pub(crate) match_mode: MatchArg,
-    /// How each triangle's third vertex travels.
-    #[arg(long, value_enum, default_value_t = PathArg::Rigid)]
-    pub(crate) path: PathArg,
-    /// How far the straight segment between two keyframes may stray from
-    /// the planned motion, as a fraction of the shape's diagonal (above 0,
-    /// at most 0.1); smaller gives more keys.
-    #[arg(long, value_name = "FRACTION", default_value_t = immerse::morph::KEY_TOLERANCE, value_parser = key_tolerance, allow_negative_numbers = true)]
-    pub(crate) key_tolerance: f64,
+    /// The path of the motion and the tolerance of its keys.
+    #[command(flatten)]
+    pub(crate) motion: MotionArgs,
     /// Triangulation quality of each curve.
     #[arg(long, value_enum, default_value_t = QualityArg::Delaunay)]
     pub(crate) quality: QualityArg,
@@ -671,6 +641,38 @@ pub(crate) struct MorphArgs {
     /// folder.
     #[arg(long, value_enum)]
     pub(crate) format: Option<FormatArg>,
+    /// The images' grid, size and speed.
+    #[command(flatten)]
+    pub(crate) image: ImageArgs,
+    /// How the animation plays and what images draw.
+    #[command(flatten)]
+    pub(crate) play: PlayArgs,
+    /// Replacing outputs and quiet.
+    #[command(flatten)]
+    pub(crate) run: RunArgs,
+    /// Print how long each stage took (read, morph, json, images) to stderr.
+    #[arg(long)]
+    pub(crate) timings: bool,
+}
+
+/// The motion flags that `morph` and `animate` share: the third vertex's
+/// path and the keys' tolerance.
+#[derive(Debug, Args)]
+pub(crate) struct MotionArgs {
+    /// How each triangle's third vertex travels.
+    #[arg(long, value_enum, default_value_t = PathArg::Rigid)]
+    pub(crate) path: PathArg,
+    /// How far the straight segment between two keyframes may stray from
+    /// the planned motion, as a fraction of the shape's diagonal (above 0,
+    /// at most 0.1); smaller gives more keys.
+    #[arg(long, value_name = "FRACTION", default_value_t = immerse::morph::KEY_TOLERANCE, value_parser = key_tolerance, allow_negative_numbers = true)]
+    pub(crate) key_tolerance: f64,
+}
+
+/// The image flags that `morph` and `mesh-morph` share: a contact
+/// sheet's columns, the image size and the frame rate.
+#[derive(Debug, Args)]
+pub(crate) struct ImageArgs {
     /// Columns of a contact sheet; by default a nearly square grid.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=10_000))]
     pub(crate) columns: Option<u32>,
@@ -681,6 +683,12 @@ pub(crate) struct MorphArgs {
     /// hundredths of a second), animated SVG or Lottie, from 0.1 to 1000.
     #[arg(long, default_value_t = 30.0)]
     pub(crate) fps: f64,
+}
+
+/// How an animation plays (`morph`, `animate`) and what its images draw.
+/// `--onion` says what it draws per command (`mut_arg` on the command).
+#[derive(Debug, Args)]
+pub(crate) struct PlayArgs {
     /// Play the animation forwards then backwards, repeating.
     #[arg(long, conflicts_with = "once")]
     pub(crate) ping_pong: bool,
@@ -693,6 +701,11 @@ pub(crate) struct MorphArgs {
     /// Draw the source and target faintly behind every frame.
     #[arg(long)]
     pub(crate) onion: bool,
+}
+
+/// Replacing outputs and quiet, as `morph` and `mesh-morph` take them.
+#[derive(Debug, Args)]
+pub(crate) struct RunArgs {
     /// Replace existing output files; write into a non-empty folder,
     /// replacing frames and removing frame_N files of an earlier, longer
     /// run.
@@ -701,9 +714,6 @@ pub(crate) struct MorphArgs {
     /// No progress bars or notices on stderr.
     #[arg(short, long)]
     pub(crate) quiet: bool,
-    /// Print how long each stage took (read, morph, json, images) to stderr.
-    #[arg(long)]
-    pub(crate) timings: bool,
 }
 
 /// Parses `WxH`.
@@ -784,7 +794,7 @@ mod tests {
             panic!("not morph")
         };
         assert_eq!(m.json, Some("-".into()));
-        assert!(m.quiet);
+        assert!(m.run.quiet);
     }
 
     #[test]
@@ -826,14 +836,57 @@ mod tests {
     }
 
     #[test]
+    fn shared_flags_keep_their_rules_and_help_per_command() {
+        for cmd in ["morph", "animate"] {
+            assert!(
+                Cli::try_parse_from(["immerse", cmd, "a", "b", "--ping-pong", "--once"]).is_err(),
+                "{cmd}"
+            );
+        }
+        let help = |cmd: &str, flag: &str| {
+            let mut cli = Cli::command();
+            let sub = cli.find_subcommand_mut(cmd).unwrap();
+            let arg = sub.get_arguments().find(|a| a.get_id() == flag).unwrap();
+            arg.get_help().unwrap().to_string()
+        };
+        assert_eq!(
+            help("morph", "onion"),
+            "Draw the source and target faintly behind every frame"
+        );
+        assert_eq!(
+            help("animate", "onion"),
+            "Draw the first and last key faintly behind every frame"
+        );
+        let cli = Cli::try_parse_from([
+            "immerse",
+            "mesh-morph",
+            "a",
+            "b",
+            "--size",
+            "30x20",
+            "--fps",
+            "12",
+            "-q",
+        ])
+        .unwrap();
+        let Command::MeshMorph(m) = cli.command else {
+            panic!("not mesh-morph")
+        };
+        assert_eq!(
+            (m.image.size, m.image.fps, m.run.quiet),
+            ((30, 20), 12.0, true)
+        );
+    }
+
+    #[test]
     fn morph_defaults_and_size() {
         let cli = Cli::try_parse_from(["immerse", "morph", "a.json", "b.json"]).unwrap();
         let Command::Morph(m) = cli.command else {
             panic!("not morph")
         };
         assert_eq!(m.frames, 60);
-        assert_eq!(m.path, PathArg::Rigid);
-        assert_eq!(m.size, (600, 600));
+        assert_eq!(m.motion.path, PathArg::Rigid);
+        assert_eq!(m.image.size, (600, 600));
         assert!(Cli::try_parse_from(["immerse", "morph", "a", "b", "--frames", "1"]).is_err());
         assert_eq!(parse_size("640x480"), Ok((640, 480)));
         assert!(parse_size("0x480").is_err());

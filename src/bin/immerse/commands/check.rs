@@ -26,6 +26,27 @@ struct CheckReport {
     reason: Option<String>,
 }
 
+/// The outcome of a report that says `self_overlapping`, after writing
+/// the report where --json asks; true with it when the report went to
+/// stdout, which then holds nothing else.
+fn answer<T: Serialize>(
+    args: &CheckArgs,
+    report: &T,
+    self_overlapping: bool,
+) -> anyhow::Result<(Outcome, bool)> {
+    let outcome = if self_overlapping {
+        Outcome::Success
+    } else {
+        Outcome::Negative
+    };
+    let mut on_stdout = false;
+    if let Some(json) = &args.json {
+        super::write_json(json, report, true, args.force)?;
+        on_stdout = immerse_render::is_stdout(json);
+    }
+    Ok((outcome, on_stdout))
+}
+
 pub(crate) fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
     if let Some(json) = &args.json {
         super::check_output_file(json, args.force)?;
@@ -54,16 +75,9 @@ pub(crate) fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
         self_overlapping: verdict.is_ok(),
         reason: verdict.as_ref().err().map(ToString::to_string),
     };
-    let outcome = if report.self_overlapping {
-        Outcome::Success
-    } else {
-        Outcome::Negative
-    };
-    if let Some(json) = &args.json {
-        super::write_json(json, &report, true, args.force)?;
-        if immerse_render::is_stdout(json) {
-            return Ok(outcome);
-        }
+    let (outcome, on_stdout) = answer(args, &report, report.self_overlapping)?;
+    if on_stdout {
+        return Ok(outcome);
     }
     let mut lines = vec![format!(
         "{}: {}",
@@ -157,16 +171,9 @@ fn run_drawing(args: &CheckArgs) -> anyhow::Result<Outcome> {
         notices: drawing.notices.clone(),
         shapes,
     };
-    let outcome = if report.self_overlapping {
-        Outcome::Success
-    } else {
-        Outcome::Negative
-    };
-    if let Some(json) = &args.json {
-        super::write_json(json, &report, true, args.force)?;
-        if immerse_render::is_stdout(json) {
-            return Ok(outcome);
-        }
+    let (outcome, on_stdout) = answer(args, &report, report.self_overlapping)?;
+    if on_stdout {
+        return Ok(outcome);
     }
     let good = report
         .shapes

@@ -1,7 +1,7 @@
 //! `immerse demo`: morph two curves embedded in the binary and write PNG
 //! frames and a GIF. Needs no input and no network.
 
-use super::write::write_frames;
+use super::write::{Writing, write_frames};
 use crate::Outcome;
 use crate::args::{DemoArgs, FormatArg};
 use crate::output;
@@ -45,35 +45,25 @@ pub(crate) fn run(args: &DemoArgs) -> anyhow::Result<Outcome> {
     .context("the embedded demo curves did not morph; this is a bug in immerse")?;
     render::write_atomic(&dir.join(MARKER), b"written by immerse demo\n", true)?;
     let frames = super::render_frames(&morph.frames);
-    let style = render::Style::DEFAULT
-        .with_size(args.size.0, args.size.1)
-        .with_onion_skin(true);
+    let writing = Writing {
+        style: render::Style::DEFAULT
+            .with_size(args.size.0, args.size.1)
+            .with_onion_skin(true),
+        fps: 24.0,
+        looping: render::Loop::PingPong,
+        force: true,
+        quiet: args.quiet,
+    };
     // The folder is ours (checked above), so replacing our own files is
     // fine; frames of an earlier, longer run are removed.
     let image = |format| super::ImageOutput { format, columns: 0 };
-    write_frames(
-        &frames,
-        None,
-        dir,
-        image(FormatArg::Png),
-        &style,
-        24.0,
-        render::Loop::PingPong,
-        true,
-        args.quiet,
-    )?;
     let gif = dir.join("demo.gif");
-    write_frames(
-        &frames,
-        None,
-        &gif,
-        image(FormatArg::Gif),
-        &style,
-        24.0,
-        render::Loop::PingPong,
-        true,
-        args.quiet,
-    )?;
+    for (out, format) in [
+        (dir.as_path(), FormatArg::Png),
+        (gif.as_path(), FormatArg::Gif),
+    ] {
+        write_frames(&frames, None, out, image(format), &writing)?;
+    }
     if let Some(made) = made {
         made.keep();
     }

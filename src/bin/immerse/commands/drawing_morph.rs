@@ -3,6 +3,7 @@
 
 use super::ImageOutput;
 use super::keyed::{self, Kind, Outline, Written};
+use super::write::Writing;
 use crate::Outcome;
 use crate::args::{FormatArg, MatchArg, MorphArgs};
 use crate::output;
@@ -76,7 +77,7 @@ pub(crate) fn run(
             notices.push(format!("{}: {n}", path.display()));
         }
     }
-    if !args.quiet {
+    if !args.run.quiet {
         for n in &notices {
             output::note(n);
         }
@@ -102,31 +103,21 @@ pub(crate) fn run(
             shapes: &keys,
             frames: &frames,
         };
-        super::write_json(json, &report, false, args.force)?;
+        super::write_json(json, &report, false, args.run.force)?;
     }
     if let (Some(out), Some(images)) = (&args.output, images) {
         let rendered: Vec<render::Frame> = frames.iter().map(render_frame).collect();
         let samples: Vec<(usize, f64)> = times.iter().map(|&t| (0, t)).collect();
-        let looping = super::write::looping(args);
+        let writing = super::write::writing(args);
         let play = DrawingPlay::new(
             &[keys.as_slice()],
             &samples,
-            looping,
+            writing.looping,
             easing != render::Easing::Linear,
         );
-        write_images(
-            &rendered,
-            &play,
-            out,
-            images,
-            &super::write::style(args),
-            args.fps,
-            looping,
-            args.force,
-            args.quiet,
-        )?;
+        write_images(&rendered, &play, out, images, &writing)?;
     }
-    if !args.quiet {
+    if !args.run.quiet {
         output::note(&summary(&a, &b, &matching));
         output::note(&format!(
             "{} shapes, {} frames computed and verified (every shape of every frame an immersed disk) in {:.0} ms; keys per shape: {} ({})",
@@ -335,38 +326,13 @@ pub(crate) fn write_keyed(
     fps: f64,
     looping: render::Loop,
 ) -> anyhow::Result<Written> {
-    let shapes: Vec<Vec<Vec<render::Frame>>> = play
-        .scenes
-        .iter()
-        .map(|scene| {
-            scene
-                .tracks
-                .iter()
-                .map(|t| {
-                    t.keys
-                        .iter()
-                        .map(|k| {
-                            render::Frame::from_triangles(
-                                super::plain_points(&k.points),
-                                Vec::new(),
-                            )
-                        })
-                        .collect()
-                })
-                .collect()
-        })
-        .collect();
-    let times: Vec<Vec<Vec<f64>>> = play
-        .scenes
-        .iter()
-        .map(|scene| {
-            scene
-                .tracks
-                .iter()
-                .map(|t| t.keys.iter().map(|k| k.t).collect())
-                .collect()
-        })
-        .collect();
+    let shapes: Vec<Vec<Vec<render::Frame>>> = per_track(play, |t| {
+        t.keys
+            .iter()
+            .map(|k| render::Frame::from_triangles(super::plain_points(&k.points), Vec::new()))
+            .collect()
+    });
+    let times: Vec<Vec<Vec<f64>>> = per_track(play, |t| t.keys.iter().map(|k| k.t).collect());
     let tracks: Vec<Vec<render::Track<'_>>> = play
         .scenes
         .iter()
@@ -429,38 +395,40 @@ pub(crate) fn write_keyed(
     Ok(written)
 }
 
+/// `f` of every track of `play`, scene by scene.
+fn per_track<T>(play: &DrawingPlay, f: impl Fn(&ShapeTrack) -> T) -> Vec<Vec<T>> {
+    play.scenes
+        .iter()
+        .map(|scene| scene.tracks.iter().map(&f).collect())
+        .collect()
+}
+
 /// Writes a drawing animation's outputs: Lottie and animated SVG from
 /// the certified keys ([`write_keyed`]), every other format from the
 /// rendered frames.
-#[allow(
-    clippy::too_many_arguments,
-    reason = "plain glue between CLI options and the renderer"
-)]
 pub(crate) fn write_images(
     frames: &[render::Frame],
     play: &DrawingPlay,
     out: &std::path::Path,
     images: ImageOutput,
-    style: &render::Style,
-    fps: f64,
-    looping: render::Loop,
-    force: bool,
-    quiet: bool,
+    writing: &Writing,
 ) -> anyhow::Result<()> {
     let kind = match images.format {
         FormatArg::Lottie => Kind::Lottie,
         FormatArg::AnimatedSvg => Kind::AnimatedSvg,
-        _ => {
-            return super::write::write_frames(
-                frames, None, out, images, style, fps, looping, force, quiet,
-            );
-        }
+        _ => return super::write::write_frames(frames, None, out, images, writing),
     };
+    let Writing {
+        ref style,
+        fps,
+        looping,
+        ..
+    } = *writing;
     let view = render::View::fit(frames, style);
     let written = write_keyed(kind, play, view, style, fps, looping)
         .with_context(|| format!("-o {}", out.display()))?;
-    keyed::save(&written, out, force)?;
-    if !quiet {
+    keyed::save(&written, out, writing.force)?;
+    if !writing.quiet {
         output::note(&keyed::describe(kind, &written, written.text.len()));
     }
     Ok(())

@@ -1,7 +1,7 @@
 //! `immerse mesh-morph`: morphs between compatible planar tilings.
 
 use super::plain_points;
-use super::write::write_frames;
+use super::write::{Writing, write_frames};
 use crate::Outcome;
 use crate::args::{MeshMorphArgs, MethodArg, WeightsArg};
 use crate::output;
@@ -37,29 +37,29 @@ struct MorphJson<'a> {
 /// The image style of `immerse mesh-morph`.
 fn style(args: &MeshMorphArgs) -> render::Style {
     render::Style::DEFAULT
-        .with_size(args.size.0, args.size.1)
+        .with_size(args.image.size.0, args.image.size.1)
         .with_wireframe(true)
 }
 
 pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
-    super::check_fps("--fps", args.fps)?;
+    super::check_fps("--fps", args.image.fps)?;
     // Every output is checked before any work.
     let images = match &args.output {
         Some(out) if !args.check_linear => Some(super::check_images(
             args.format,
             out,
-            args.force,
+            args.run.force,
             args.frames as usize,
             &style(args),
-            args.fps,
-            args.columns,
+            args.image.fps,
+            args.image.columns,
         )?),
         _ => None,
     };
     if let Some(json) = &args.json
         && !args.check_linear
     {
-        super::check_output_file(json, args.force)?;
+        super::check_output_file(json, args.run.force)?;
     }
     super::one_stdout(&[
         (
@@ -123,7 +123,7 @@ pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
     // positions and more), quiet otherwise.
     let busy = super::spinner(
         &format!("morphing {} vertices over {n} frames", a.points.len()),
-        args.quiet || a.points.len() * n < 1_000_000,
+        args.run.quiet || a.points.len() * n < 1_000_000,
     );
     let frames = mesh_morph(&a, &b, method, &times, &options);
     busy.finish_and_clear();
@@ -142,7 +142,7 @@ pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
                 })
                 .collect(),
         };
-        super::write_json(json, &doc, false, args.force)?;
+        super::write_json(json, &doc, false, args.run.force)?;
     }
     if let (Some(out), Some(images)) = (&args.output, images) {
         let plain: Vec<render::Frame> = frames
@@ -154,19 +154,16 @@ pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
                 ..render::Frame::default()
             })
             .collect();
-        write_frames(
-            &plain,
-            None,
-            out,
-            images,
-            &style(args),
-            args.fps,
-            render::Loop::Loop,
-            args.force,
-            args.quiet,
-        )?;
+        let writing = Writing {
+            style: style(args),
+            fps: args.image.fps,
+            looping: render::Loop::Loop,
+            force: args.run.force,
+            quiet: args.run.quiet,
+        };
+        write_frames(&plain, None, out, images, &writing)?;
     }
-    if !args.quiet {
+    if !args.run.quiet {
         output::note(&format!(
             "{} frames by the {} method: {} valid, {invalid} with a folded or degenerate face",
             frames.len(),

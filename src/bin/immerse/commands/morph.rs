@@ -50,7 +50,7 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         .easing
         .parse()
         .with_context(|| format!("--easing '{}'", args.easing))?;
-    super::check_fps("--fps", args.fps)?;
+    super::check_fps("--fps", args.image.fps)?;
     let options = options(args)?;
     // Every output is checked before any work: nothing is computed for
     // an output that would then be refused.
@@ -58,16 +58,16 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         Some(out) => Some(super::check_images(
             args.format,
             out,
-            args.force,
+            args.run.force,
             args.frames as usize,
             &super::write::style(args),
-            args.fps,
-            args.columns,
+            args.image.fps,
+            args.image.columns,
         )?),
         None => None,
     };
     if let Some(json) = &args.json {
-        super::check_output_file(json, args.force)?;
+        super::check_output_file(json, args.run.force)?;
     }
     super::one_stdout(&[
         (
@@ -90,7 +90,7 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         return super::drawing_morph::run(args, images, &options);
     }
     let (src, dst) = (src?, dst?);
-    if !args.quiet {
+    if !args.run.quiet {
         for (c, path) in [(&src, &args.source), (&dst, &args.target)] {
             // SVG shapes (rect, circle, ellipse) are drawn clockwise on
             // screen, which is clockwise with y up too: the format's
@@ -113,7 +113,7 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
     let times = render::frame_times(args.frames as usize, &easing);
     let busy = super::spinner(
         &format!("triangulating, matching and morphing {n} vertices"),
-        args.quiet || n < 300,
+        args.run.quiet || n < 300,
     );
     clock.lap("read");
     let result = Tween::new(&src.points, &dst.points, &options).and_then(|tween| {
@@ -146,14 +146,19 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         }
         Err(err) => return Err(err.into()),
     };
-    if !args.quiet {
+    if !args.run.quiet {
         for f in &morph.fallbacks {
             output::note(&format!("{f} (every frame is an immersion)"));
         }
     }
     let keyframes = tween.keyframes();
     if let Some(json) = &args.json {
-        super::write_json(json, &WithKeys::new(&morph, &keyframes), false, args.force)?;
+        super::write_json(
+            json,
+            &WithKeys::new(&morph, &keyframes),
+            false,
+            args.run.force,
+        )?;
     }
     clock.lap("json");
     if let (Some(out), Some(images)) = (&args.output, images) {
@@ -222,7 +227,7 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
             m.unwind,
         ))?;
     }
-    if !args.quiet {
+    if !args.run.quiet {
         output::note(&format!(
             "{} keyframes ({}), {} frames computed and verified{}",
             keyframes.len(),
@@ -310,11 +315,7 @@ fn write_images(
         Some(played),
         out,
         images,
-        &super::write::style(args),
-        args.fps,
-        super::write::looping(args),
-        args.force,
-        args.quiet,
+        &super::write::writing(args),
     )
 }
 
@@ -363,12 +364,12 @@ impl PlanFlags {
 /// The library options `immerse morph`'s arguments ask for.
 pub(crate) fn options(args: &MorphArgs) -> anyhow::Result<CurveMorphOptions> {
     PlanFlags {
-        path: args.path,
+        path: args.motion.path,
         correspondence: args.correspondence,
         quality: args.quality,
         counts: args.counts,
         intermediate: args.intermediate,
-        key_tolerance: args.key_tolerance,
+        key_tolerance: args.motion.key_tolerance,
     }
     .options()
     .map_err(anyhow::Error::msg)

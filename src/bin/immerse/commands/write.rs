@@ -4,47 +4,81 @@
 
 use super::keyed::{self, Played};
 use super::progress_bar;
-use crate::args::{FormatArg, MorphArgs};
+use crate::args::{FormatArg, MorphArgs, PlayArgs};
 use crate::output;
 use anyhow::Context;
 use immerse_render as render;
 use std::path::Path;
 
+impl PlayArgs {
+    /// The image style at `size` with these flags' wireframe and onion skin.
+    pub(crate) fn style(&self, size: (u32, u32)) -> render::Style {
+        render::Style::DEFAULT
+            .with_size(size.0, size.1)
+            .with_wireframe(self.wireframe)
+            .with_onion_skin(self.onion)
+    }
+
+    /// How the animation plays when a flag says so (--ping-pong, --once).
+    pub(crate) fn looping(&self) -> Option<render::Loop> {
+        if self.ping_pong {
+            Some(render::Loop::PingPong)
+        } else if self.once {
+            Some(render::Loop::Once)
+        } else {
+            None
+        }
+    }
+}
+
 /// The image style of `immerse morph`.
 pub(crate) fn style(args: &MorphArgs) -> render::Style {
-    render::Style::DEFAULT
-        .with_size(args.size.0, args.size.1)
-        .with_wireframe(args.wireframe)
-        .with_onion_skin(args.onion)
+    args.play.style(args.image.size)
 }
 
 /// How `immerse morph`'s animations play.
 pub(crate) fn looping(args: &MorphArgs) -> render::Loop {
-    if args.ping_pong {
-        render::Loop::PingPong
-    } else if args.once {
-        render::Loop::Once
-    } else {
-        render::Loop::Loop
+    args.play.looping().unwrap_or(render::Loop::Loop)
+}
+
+/// How frames are written: their style, frame rate and play mode, whether
+/// existing files are replaced, and whether progress is quiet.
+#[derive(Clone, Debug)]
+pub(crate) struct Writing {
+    pub(crate) style: render::Style,
+    pub(crate) fps: f64,
+    pub(crate) looping: render::Loop,
+    pub(crate) force: bool,
+    pub(crate) quiet: bool,
+}
+
+/// How `immerse morph` writes its frames.
+pub(crate) fn writing(args: &MorphArgs) -> Writing {
+    Writing {
+        style: style(args),
+        fps: args.image.fps,
+        looping: looping(args),
+        force: args.run.force,
+        quiet: args.run.quiet,
     }
 }
 
-/// Writes rendered frames to `out` as `images` says, with a progress bar.
-#[allow(
-    clippy::too_many_arguments,
-    reason = "plain glue between CLI options and the renderer"
-)]
+/// Writes rendered frames to `out` as `images` and `writing` say, with a
+/// progress bar.
 pub(crate) fn write_frames(
     frames: &[render::Frame],
     keys: Option<&Played>,
     out: &Path,
     images: super::ImageOutput,
-    style: &render::Style,
-    fps: f64,
-    looping: render::Loop,
-    force: bool,
-    quiet: bool,
+    writing: &Writing,
 ) -> anyhow::Result<()> {
+    let Writing {
+        ref style,
+        fps,
+        looping,
+        force,
+        quiet,
+    } = *writing;
     let opts = render::Output::DEFAULT.with_force(force);
     let total = match images.format {
         FormatArg::Gif => looping.sequence(frames.len()).len(),

@@ -8,6 +8,7 @@ use crate::Outcome;
 use crate::args::{AnimateArgs, FormatArg, MatchArg};
 use crate::commands::ImageOutput;
 use crate::commands::drawing_morph::{self, DrawingPlay, render_frame};
+use crate::commands::write::Writing;
 use crate::output;
 use anyhow::Context;
 use immerse::curve::SvgShapes;
@@ -113,19 +114,11 @@ struct SegmentJson<'a> {
     shapes: &'a [ShapeKeys],
 }
 
-#[derive(serde::Serialize)]
-struct KeyJson<'a> {
-    name: &'a str,
-    frame: usize,
-    hold: usize,
-    shapes: usize,
-}
-
 /// `animate --json` on drawings.
 #[derive(serde::Serialize)]
 struct DrawingSequenceJson<'a> {
     fps: f64,
-    keys: Vec<KeyJson<'a>>,
+    keys: Vec<super::KeyJson<'a>>,
     segments: Vec<SegmentJson<'a>>,
     key_count: usize,
     frames: &'a [DrawingFrame],
@@ -184,16 +177,11 @@ pub(super) fn run(
     if let Some(json) = &args.json {
         let value = DrawingSequenceJson {
             fps: timing.fps,
-            keys: keys
-                .iter()
-                .enumerate()
-                .map(|(j, k)| KeyJson {
-                    name: &k.name,
-                    frame: schedule.key_frames[j],
-                    hold: schedule.holds[j],
-                    shapes: k.drawing.len(),
-                })
-                .collect(),
+            keys: super::key_json(
+                &schedule,
+                keys.iter()
+                    .map(|k| (k.name.as_str(), Some(k.drawing.len()))),
+            ),
             segments: (0..tweens.len())
                 .map(|s| SegmentJson {
                     from: &keys[s].name,
@@ -212,15 +200,11 @@ pub(super) fn run(
     let eased = timing.keys.iter().any(|k| !k.easing.is_linear());
     let segments: Vec<&[ShapeKeys]> = shape_keys.iter().map(Vec::as_slice).collect();
     let play = DrawingPlay::new(&segments, &samples, looping, eased);
-    let style = super::image_style(args);
+    let writing = super::writing(args, schedule.fps, looping);
     for (out, image) in args.output.iter().zip(images) {
-        write_output(
-            args, out, *image, &rendered, &play, &schedule, &style, looping,
-        )?;
+        write_output(args, out, *image, &rendered, &play, &schedule, &writing)?;
     }
-    let to_stdout = args.json.as_deref().is_some_and(render::is_stdout)
-        || args.output.iter().any(|o| render::is_stdout(o));
-    if !to_stdout {
+    if !super::writes_stdout(args) {
         let mut lines = vec![format!(
             "{} keys (drawings of {} shapes), {} frames at {} fps ({:.2} s), every shape of every frame a verified immersed disk, in {:.0} ms; {key_total} keyframes ({})",
             keys.len(),
@@ -252,10 +236,6 @@ pub(super) fn run(
     Ok(Outcome::Success)
 }
 
-#[allow(
-    clippy::too_many_arguments,
-    reason = "plain glue between CLI options and the renderer"
-)]
 fn write_output(
     args: &AnimateArgs,
     out: &Path,
@@ -263,31 +243,11 @@ fn write_output(
     frames: &[render::Frame],
     play: &DrawingPlay,
     schedule: &Schedule,
-    style: &render::Style,
-    looping: render::Loop,
+    writing: &Writing,
 ) -> anyhow::Result<()> {
-    let fps = schedule.fps;
     if image.format == FormatArg::Sheet {
-        // One row per segment: the key, in-betweens, the next key.
-        let k = args.sheet_inbetweens as usize;
-        let mut picked = Vec::new();
-        for s in 0..schedule.steps.len() {
-            let start = schedule.key_frames[s] + schedule.holds[s];
-            let end = schedule.key_frames[s + 1];
-            for i in 0..=k + 1 {
-                let f = start as f64 + (end - start) as f64 * i as f64 / (k + 1) as f64;
-                picked.push(frames[f.round() as usize].clone());
-            }
-        }
-        let sheet = ImageOutput {
-            format: FormatArg::Sheet,
-            columns: k + 2,
-        };
-        return crate::commands::write::write_frames(
-            &picked, None, out, sheet, style, fps, looping, args.force, args.quiet,
-        );
+        let (picked, sheet) = super::sheet_rows(frames, schedule, args.sheet_inbetweens);
+        return crate::commands::write::write_frames(&picked, None, out, sheet, writing);
     }
-    drawing_morph::write_images(
-        frames, play, out, image, style, fps, looping, args.force, args.quiet,
-    )
+    drawing_morph::write_images(frames, play, out, image, writing)
 }

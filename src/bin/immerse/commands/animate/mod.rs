@@ -5,7 +5,7 @@ mod drawings;
 mod timeline;
 
 use super::keyed::Played;
-use super::write::write_frames;
+use super::write::{Writing, write_frames};
 use crate::Outcome;
 use crate::args::{AnimateArgs, FormatArg};
 use crate::output;
@@ -167,27 +167,18 @@ pub(crate) fn run(args: &AnimateArgs) -> anyhow::Result<Outcome> {
             key_count: keyframes.len(),
             keyframes: &keyframes,
             fps,
-            keys: keys
-                .iter()
-                .enumerate()
-                .map(|(j, k)| KeyJson {
-                    name: &k.name,
-                    frame: schedule.key_frames[j],
-                    hold: schedule.holds[j],
-                })
-                .collect(),
+            keys: key_json(&schedule, keys.iter().map(|k| (k.name.as_str(), None))),
             speeds: &speeds,
         };
         super::write_json(json, &value, false, args.force)?;
     }
     let looping = looping_of(args, &tl);
     let played = Played::new(&keyframes, &seq.frame_times(&schedule), looping, eased);
+    let writing = writing(args, fps, looping);
     for (out, image) in args.output.iter().zip(&images) {
-        write_output(args, out, *image, &morph, &played, &schedule, fps, looping)?;
+        write_output(args, out, *image, &morph, &played, &schedule, &writing)?;
     }
-    let to_stdout = args.json.as_deref().is_some_and(render::is_stdout)
-        || args.output.iter().any(|o| render::is_stdout(o));
-    if !to_stdout {
+    if !writes_stdout(args) {
         output::print(&summary(
             &seq,
             &keys,
@@ -203,13 +194,10 @@ pub(crate) fn run(args: &AnimateArgs) -> anyhow::Result<Outcome> {
 /// How the animation plays: the command line's choice, else the
 /// timeline's, else looping.
 fn looping_of(args: &AnimateArgs, tl: &Timeline) -> render::Loop {
-    if args.ping_pong {
-        render::Loop::PingPong
-    } else if args.once {
-        render::Loop::Once
-    } else {
-        tl.looping.unwrap_or(render::Loop::Loop)
-    }
+    args.play
+        .looping()
+        .or(tl.looping)
+        .unwrap_or(render::Loop::Loop)
 }
 
 /// The timing of keys with these specs: the timeline's times, holds,
@@ -430,11 +418,36 @@ fn hint_at(k: &ReadKey, j: usize, name: &str, spec: HintSpec) -> Result<HintAt, 
     }
 }
 
+/// A key in `animate --json`: its name, the frame it falls on, the
+/// frames it holds and, for a drawing, its shapes.
 #[derive(serde::Serialize)]
 struct KeyJson<'a> {
     name: &'a str,
     frame: usize,
     hold: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    shapes: Option<usize>,
+}
+
+/// The [`KeyJson`] of each key, given by its name and shapes, in order.
+fn key_json<'a>(
+    schedule: &Schedule,
+    keys: impl Iterator<Item = (&'a str, Option<usize>)>,
+) -> Vec<KeyJson<'a>> {
+    keys.enumerate()
+        .map(|(j, (name, shapes))| KeyJson {
+            name,
+            frame: schedule.key_frames[j],
+            hold: schedule.holds[j],
+            shapes,
+        })
+        .collect()
+}
+
+/// Whether --json or an -o writes to stdout (which then holds nothing else).
+fn writes_stdout(args: &AnimateArgs) -> bool {
+    args.json.as_deref().is_some_and(render::is_stdout)
+        || args.output.iter().any(|o| render::is_stdout(o))
 }
 
 /// `morph --json`'s format plus the keys and the speeds at them.
@@ -451,16 +464,45 @@ struct SequenceJson<'a> {
 
 /// The image style of `animate`'s options.
 fn image_style(args: &AnimateArgs) -> render::Style {
-    render::Style::DEFAULT
-        .with_size(args.size.0, args.size.1)
-        .with_wireframe(args.wireframe)
-        .with_onion_skin(args.onion)
+    args.play.style(args.size)
 }
 
-#[allow(
-    clippy::too_many_arguments,
-    reason = "plain glue between CLI options and the renderer"
-)]
+/// How `animate` writes its frames at `fps`, playing as `looping` says.
+fn writing(args: &AnimateArgs, fps: f64, looping: render::Loop) -> Writing {
+    Writing {
+        style: image_style(args),
+        fps,
+        looping,
+        force: args.force,
+        quiet: args.quiet,
+    }
+}
+
+/// A contact sheet of `frames` with one row per segment: the key,
+/// `in_betweens` frames evenly between its hold's end and the next key,
+/// and that key; with the sheet's layout.
+fn sheet_rows<T: Clone>(
+    frames: &[T],
+    schedule: &Schedule,
+    in_betweens: u32,
+) -> (Vec<T>, super::ImageOutput) {
+    let k = in_betweens as usize;
+    let mut picked = Vec::new();
+    for s in 0..schedule.steps.len() {
+        let start = schedule.key_frames[s] + schedule.holds[s];
+        let end = schedule.key_frames[s + 1];
+        for i in 0..=k + 1 {
+            let f = start as f64 + (end - start) as f64 * i as f64 / (k + 1) as f64;
+            picked.push(frames[f.round() as usize].clone());
+        }
+    }
+    let sheet = super::ImageOutput {
+        format: FormatArg::Sheet,
+        columns: k + 2,
+    };
+    (picked, sheet)
+}
+
 fn write_output(
     args: &AnimateArgs,
     out: &Path,
@@ -468,43 +510,15 @@ fn write_output(
     morph: &Morph,
     played: &Played,
     schedule: &Schedule,
-    fps: f64,
-    looping: render::Loop,
+    writing: &Writing,
 ) -> anyhow::Result<()> {
-    let style = image_style(args);
     if image.format == FormatArg::Sheet {
-        // One row per segment: the key, in-betweens, the next key.
-        let k = args.sheet_inbetweens as usize;
-        let mut picked = Vec::new();
-        for s in 0..schedule.steps.len() {
-            let start = schedule.key_frames[s] + schedule.holds[s];
-            let end = schedule.key_frames[s + 1];
-            for i in 0..=k + 1 {
-                let f = start as f64 + (end - start) as f64 * i as f64 / (k + 1) as f64;
-                picked.push(morph.frames[f.round() as usize].clone());
-            }
-        }
+        let (picked, sheet) = sheet_rows(&morph.frames, schedule, args.sheet_inbetweens);
         let frames = super::render_frames(&picked);
-        let sheet = super::ImageOutput {
-            format: FormatArg::Sheet,
-            columns: k + 2,
-        };
-        return write_frames(
-            &frames, None, out, sheet, &style, fps, looping, args.force, args.quiet,
-        );
+        return write_frames(&frames, None, out, sheet, writing);
     }
     let frames = super::render_frames(&morph.frames);
-    write_frames(
-        &frames,
-        Some(played),
-        out,
-        image,
-        &style,
-        fps,
-        looping,
-        args.force,
-        args.quiet,
-    )
+    write_frames(&frames, Some(played), out, image, writing)
 }
 
 fn summary(
@@ -564,12 +578,12 @@ fn summary(
 /// builder the morph command and the server use too).
 pub(crate) fn plan_options(args: &AnimateArgs) -> anyhow::Result<CurveMorphOptions> {
     crate::commands::morph::PlanFlags {
-        path: args.path,
+        path: args.motion.path,
         correspondence: args.correspondence,
         quality: args.quality,
         counts: crate::args::CountsArg::Insert,
         intermediate: args.intermediate,
-        key_tolerance: args.key_tolerance,
+        key_tolerance: args.motion.key_tolerance,
     }
     .options()
     .map_err(anyhow::Error::msg)

@@ -519,6 +519,29 @@ fn answer(summary: &serde_json::Value, morph_json: &Bytes) -> Vec<Bytes> {
     ]
 }
 
+/// A finished job's [`answer`]: its `summary` with what every job
+/// reports (id, time taken, image size, view, frame rate and links).
+fn finished(
+    mut summary: serde_json::Value,
+    elapsed: std::time::Duration,
+    plan: &jobs::Plan,
+    job: &Job,
+) -> Vec<Bytes> {
+    let id = job.id;
+    let common = serde_json::json!({
+        "id": id.to_string(),
+        "milliseconds": (elapsed.as_secs_f64() * 1e4).round() / 10.0,
+        "size": [plan.style.width, plan.style.height],
+        "view": job.view(),
+        "fps": plan.fps,
+        "urls": job_urls(id),
+    });
+    if let (Some(fields), serde_json::Value::Object(common)) = (summary.as_object_mut(), common) {
+        fields.extend(common);
+    }
+    answer(&summary, &job.morph_json())
+}
+
 /// A morph of curves: its summary and frames, and its certified keys,
 /// which the page plays (docs/design.md §12 and §13).
 fn morph_curves(
@@ -544,7 +567,6 @@ fn morph_curves(
     drop(morph);
     let job = Job::new(id, frames, plan, morph_json, &keys);
     let summary = serde_json::json!({
-        "id": id.to_string(),
         "kind": "curves",
         "curves": curves.len(),
         "frames": frame_count,
@@ -553,13 +575,8 @@ fn morph_curves(
         "path": path,
         "fallback": fallback,
         "fallbacks": fallbacks,
-        "milliseconds": (elapsed.as_secs_f64() * 1e4).round() / 10.0,
-        "size": [plan.style.width, plan.style.height],
-        "view": job.view(),
-        "fps": plan.fps,
-        "urls": job_urls(id),
     });
-    Ok((answer(&summary, &job.morph_json()), job))
+    Ok((finished(summary, elapsed, plan, &job), job))
 }
 
 /// A morph of two drawings: its summary (with the matching in words) and
@@ -598,18 +615,12 @@ fn morph_drawings(
     drop(frames);
     let job = Job::new(id, rendered, plan, morph_json, &[]);
     let summary = serde_json::json!({
-        "id": id.to_string(),
         "kind": "drawings",
         "shapes": shapes,
         "matching": drawing_morph::summary(a, b, &matching),
         "frames": frame_count,
-        "milliseconds": (elapsed.as_secs_f64() * 1e4).round() / 10.0,
-        "size": [plan.style.width, plan.style.height],
-        "view": job.view(),
-        "fps": plan.fps,
-        "urls": job_urls(id),
     });
-    Ok((answer(&summary, &job.morph_json()), job))
+    Ok((finished(summary, elapsed, plan, &job), job))
 }
 
 /// `value` as JSON in a buffer of exactly its length: it is measured

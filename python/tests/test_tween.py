@@ -89,7 +89,7 @@ def test_report_and_repr():
     "option, value, message",
     [
         ("path", "wobbly", "unknown path 'wobbly'; use"),
-        ("correspondence", "nearest", "unknown correspondence 'nearest'; use outline"),
+        ("correspondence", "nearest", "unknown correspondence 'nearest'; use corners, min-flips, best"),
         ("counts", "more", "unknown counts 'more'; use insert, resample"),
         ("intermediate", "cube", "unknown intermediate 'cube'; use target, disk"),
         ("quality", "great", "unknown triangulation quality 'great'"),

@@ -579,27 +579,31 @@ pub(crate) struct Element {
     pub(crate) subpaths: Vec<Subpath>,
 }
 
+/// Appends the visible path elements under `group` (but immerse's own
+/// background), in painting order, with `opacity` the product of the
+/// group opacities above them.
+fn walk(group: &usvg::Group, opacity: f64, out: &mut Vec<Element>) {
+    for node in group.children() {
+        match node {
+            usvg::Node::Group(g) => walk(g, opacity * f64::from(g.opacity().get()), out),
+            usvg::Node::Path(path) if path.id() != BACKGROUND_ID && path.is_visible() => {
+                let subpaths = subpaths(path);
+                if !subpaths.is_empty() {
+                    out.push(Element {
+                        path: (**path).clone(),
+                        group_opacity: opacity,
+                        subpaths,
+                    });
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
 /// Every visible path element of a drawing but immerse's own background,
 /// in document (painting) order.
 pub(crate) fn elements(bytes: &[u8], label: &str) -> Result<Vec<Element>, CurveError> {
-    fn walk(group: &usvg::Group, opacity: f64, out: &mut Vec<Element>) {
-        for node in group.children() {
-            match node {
-                usvg::Node::Group(g) => walk(g, opacity * f64::from(g.opacity().get()), out),
-                usvg::Node::Path(path) if path.id() != BACKGROUND_ID && path.is_visible() => {
-                    let subpaths = subpaths(path);
-                    if !subpaths.is_empty() {
-                        out.push(Element {
-                            path: (**path).clone(),
-                            group_opacity: opacity,
-                            subpaths,
-                        });
-                    }
-                }
-                _ => {}
-            }
-        }
-    }
     let tree = load(bytes, label)?;
     let mut out = Vec::new();
     walk(tree.root(), 1.0, &mut out);
@@ -619,24 +623,6 @@ pub(crate) fn group_elements(
     bytes: &[u8],
     label: &str,
 ) -> Result<Vec<(String, Vec<Element>)>, CurveError> {
-    fn walk(group: &usvg::Group, opacity: f64, out: &mut Vec<Element>) {
-        for node in group.children() {
-            match node {
-                usvg::Node::Group(g) => walk(g, opacity * f64::from(g.opacity().get()), out),
-                usvg::Node::Path(path) if path.id() != BACKGROUND_ID && path.is_visible() => {
-                    let subpaths = subpaths(path);
-                    if !subpaths.is_empty() {
-                        out.push(Element {
-                            path: (**path).clone(),
-                            group_opacity: opacity,
-                            subpaths,
-                        });
-                    }
-                }
-                _ => {}
-            }
-        }
-    }
     let tree = load(bytes, label)?;
     let mut level = tree.root();
     let mut opacity = 1.0;

@@ -387,20 +387,7 @@ pub fn animated_svg_keys(
     }
     let last = (keys.frames.max(2) - 1) as f64;
     let dur = last / fps;
-    let key_times: Vec<String> = keys
-        .times
-        .iter()
-        .enumerate()
-        .map(|(i, &t)| {
-            // The ends exactly 0 and 1, as SMIL asks.
-            let x = if i + 1 == keys.times.len() {
-                1.0
-            } else {
-                t / last
-            };
-            format!("{x}")
-        })
-        .collect();
+    let key_times = smil_key_times(keys.times, last);
     let (values, key_times) = if shapes.len() == 1 {
         ([shapes[0].as_str(); 2].join(";"), "0;1".to_string())
     } else {
@@ -631,19 +618,7 @@ pub fn animated_svg_drawing(
             };
             // Every key of the outline is written, equal or not: the
             // certified keys exactly.
-            let key_times: Vec<String> = track
-                .times
-                .iter()
-                .enumerate()
-                .map(|(i, &t)| {
-                    let x = if i + 1 == track.times.len() {
-                        1.0
-                    } else {
-                        t / last
-                    };
-                    format!("{x}")
-                })
-                .collect();
+            let key_times = smil_key_times(track.times, last);
             let (key_times, values) = if ds.len() == 1 {
                 ("0;1".to_string(), format!("{0};{0}", ds[0]))
             } else {
@@ -708,6 +683,20 @@ pub fn write_animated_svg(
     crate::check_output_file(path, opts.force)?;
     let svg = animated_svg(frames, style, fps, looping)?;
     write_atomic(path, svg.as_bytes(), opts.force)
+}
+
+/// SMIL `keyTimes` for keys at frame times `times` of an animation whose
+/// last frame is `last`: each time over `last`, the last one exactly 1 (the
+/// ends exactly 0 and 1, as SMIL asks).
+fn smil_key_times(times: &[f64], last: f64) -> Vec<String> {
+    times
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| {
+            let x = if i + 1 == times.len() { 1.0 } else { t / last };
+            format!("{x}")
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -472,3 +472,33 @@ fn the_corners_rule_matches_strip_edges_and_says_when_it_cannot() {
             .all(|f| check(&f.points, &f.triangles).is_ok())
     );
 }
+
+/// A morph leaves its first curve and reaches its last continuously, even
+/// where a triangle is thin down to rounding (the stress generators'
+/// collinear runs: angles of 10⁻¹⁵ rad). The angle rule once floored
+/// single angles at 10⁻¹², which moved such a triangle's third vertex
+/// along its base: the frames next to an end sat a tenth of the diagonal
+/// away from it. Frames 10⁻¹⁰ from either end now lie within 10⁻⁶ of the
+/// diagonal of it.
+#[test]
+fn a_morph_meets_its_ends_continuously_through_triangles_thin_to_rounding() {
+    for index in [24, 1452, 1547] {
+        let p = testkit::stress::pair(0x2026b, index);
+        let tween = Tween::new(&p.source, &p.target, &CurveMorphOptions::DEFAULT)
+            .unwrap_or_else(|e| panic!("stress pair {index}: {e}"));
+        let d = diag(&p.source).max(diag(&p.target));
+        for (end, near) in [(0.0, 1e-10), (1.0, 1.0 - 1e-10)] {
+            let (a, b) = (tween.frame(end).unwrap(), tween.frame(near).unwrap());
+            let gap = a
+                .points
+                .iter()
+                .zip(&b.points)
+                .map(|(p, q)| p.distance(*q))
+                .fold(0.0, f64::max);
+            assert!(
+                gap <= 1e-6 * d,
+                "stress pair {index}: the frame at t = {near} lies {gap:.3e} from the one at t = {end} (diagonal {d:.3e})"
+            );
+        }
+    }
+}

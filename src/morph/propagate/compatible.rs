@@ -1000,10 +1000,18 @@ fn estimate_angles(cross: f64, dot_x: f64, dot_y: f64) -> Option<[f64; 3]> {
 /// round to zero are lifted to a tiny positive value and the triple is
 /// rescaled to sum π; `None` when the triangle is not strictly CCW.
 fn corner_angles(p: &[Point], [x, y, w]: [usize; 3]) -> Option<[f64; 3]> {
-    if !crate::geom::orient(p[x], p[y], p[w]).is_ccw() {
+    let (px, py, pw) = (p[x], p[y], p[w]);
+    if !crate::geom::orient(px, py, pw).is_ccw() {
         return None;
     }
-    let a = crate::geom::polygon::triangle_angles(p[x], p[y], p[w]).map(|v| v.max(1e-12));
+    // One cross product for all three corners, from the exact predicate's
+    // adaptive determinant (accurate where the floating-point one cancels):
+    // a thin triangle's small angles then keep their true ratio, which
+    // fixes where its third vertex lies along its base.
+    let coord = |q: Point| robust::Coord { x: q.x, y: q.y };
+    let cross = robust::orient2d(coord(px), coord(py), coord(pw)).abs();
+    let at = |a: Point, b: Point, c: Point| cross.atan2((b - a).dot(c - a));
+    let a = [at(px, py, pw), at(py, pw, px), at(pw, px, py)];
     let s = a[0] + a[1] + a[2];
     Some(a.map(|v| v * std::f64::consts::PI / s))
 }
@@ -1072,6 +1080,40 @@ pub(crate) mod tests {
     use super::*;
     use crate::morph::Frame;
     use std::f64::consts::PI;
+
+    /// The angle rule keeps a thin triangle's third vertex where it is
+    /// along its base: its small angles keep their true ratio however thin
+    /// it is (no floor on single angles, no cross product lost to
+    /// cancellation), so laying the angles out gives the triangle back.
+    #[test]
+    fn corner_angles_lay_out_thin_triangles_where_they_are() {
+        let mut rng = testkit::Rng::xorshift(0x51_1ce5);
+        let mut checked = 0;
+        for _ in 0..2000 {
+            let x = Point::new(rng.range(-300.0, 300.0), rng.range(-300.0, 300.0));
+            let e = Point::from_angle(rng.range(0.0, TAU)) * rng.range(0.5, 50.0);
+            let along = rng.range(0.05, 0.95);
+            // Heights from 10⁻¹⁶ to 10⁻² of the base, as rounding leaves them.
+            let h = 10f64.powf(rng.range(-16.0, -2.0));
+            let w = x + e * along + e.perp() * h;
+            let p = [x, x + e, w];
+            let Some(ang) = corner_angles(&p, [0, 1, 2]) else {
+                continue; // rounding put w on the line or below it
+            };
+            assert!(ang.iter().all(|&a| a > 0.0), "{ang:?}");
+            let z = layout::factor(ang);
+            let (ex, fx) = (p[1] - p[0], p[2] - p[0]);
+            let truth = Point::new(ex.dot(fx), ex.perp_dot(fx)) / ex.length_squared();
+            assert!(
+                (z.x - truth.x).abs() < 1e-9,
+                "height {h}: laid out at {} along the base, the triangle has it at {}",
+                z.x,
+                truth.x
+            );
+            checked += 1;
+        }
+        assert!(checked > 1500, "{checked}");
+    }
 
     #[test]
     fn angle_estimates_stay_within_their_bound() {

@@ -226,7 +226,10 @@ fn counting_sort(
 /// # Errors
 ///
 /// [`ImmersionDefect::InvalidTriangle`] for the first invalid triangle.
-pub fn check_triangles(points: &[Point], triangles: &[[u32; 3]]) -> Result<(), ImmersionDefect> {
+pub(crate) fn check_triangles(
+    points: &[Point],
+    triangles: &[[u32; 3]],
+) -> Result<(), ImmersionDefect> {
     for (t, &[a, b, c]) in triangles.iter().enumerate() {
         if !is_valid_triangle(points, a as usize, b as usize, c as usize) {
             return Err(ImmersionDefect::InvalidTriangle {

@@ -23,14 +23,12 @@ mod tween;
 pub use output::{Fallback, Frame, Morph};
 pub use plan::{
     Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, KEY_TOLERANCE,
-    MAX_KEY_TOLERANCE, MorphReport, Side, equal_counts, morph_curves,
+    MorphReport, Side, morph_curves,
 };
-pub use propagate::compatible::{
-    Compatible, CompatibleError, DEFAULT_FAN_MARGIN, STRAIGHT_AREA_RANGE, area_and_centroid,
-    lay_out,
-};
+pub(crate) use propagate::compatible::DEFAULT_FAN_MARGIN;
+pub use propagate::compatible::{Compatible, CompatibleError, area_and_centroid, lay_out};
 pub use propagate::paths::ThirdVertexPath;
-pub use staged::Staged;
+pub(crate) use staged::Staged;
 pub use tween::{Keyframe, Tween, timed_keyframes};
 
 use crate::tree::RootChoice;

@@ -58,7 +58,7 @@ pub const KEY_TOLERANCE: f64 = 0.0025;
 
 /// The largest [`CurveMorphOptions::key_tolerance`] accepted: 10 % of the
 /// diagonal.
-pub const MAX_KEY_TOLERANCE: f64 = 0.1;
+pub(crate) const MAX_KEY_TOLERANCE: f64 = 0.1;
 
 impl CurveMorphOptions {
     /// The defaults.
@@ -192,7 +192,7 @@ pub enum CurveMorphError {
 }
 
 /// Equalises vertex counts as `counts` says.
-pub fn equal_counts(a: &[Point], b: &[Point], counts: Counts) -> (Vec<Point>, Vec<Point>) {
+pub(crate) fn equal_counts(a: &[Point], b: &[Point], counts: Counts) -> (Vec<Point>, Vec<Point>) {
     let n = a.len().max(b.len());
     match counts {
         Counts::Resample => (resample_arc_length(a, n), resample_arc_length(b, n)),

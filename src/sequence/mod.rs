@@ -24,7 +24,7 @@
 //! exactly; [`key_speeds`] measures the speed on both sides of each key.
 
 mod align;
-pub mod timing;
+mod timing;
 
 pub use timing::{
     Ease, KeySpeed, KeyTiming, Sample, Schedule, Timing, key_speeds, schedule_lengths,

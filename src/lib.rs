@@ -17,8 +17,8 @@
 //! ```
 //!
 //! Every stage uses [`geom`] for positions and exact predicates; [`geom`]
-//! and [`input`] (capped file reading) re-export the `immerse-base` crate,
-//! which `immerse-mesh` shares.
+//! re-exports the `immerse-base` crate's (with `input`, its capped file
+//! reading), which `immerse-mesh` shares.
 //!
 //! Between frames, players move every vertex on a straight line;
 //! [`certify`] decides exactly whether such a segment stays an immersed

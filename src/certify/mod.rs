@@ -4,7 +4,7 @@
 //! Players (Lottie, SVG SMIL, CSS, game engines) move every vertex on a
 //! straight line between stored shapes, `p(s) = P + s(Q − P)`. With the
 //! triangulation fixed (an n-gon triangulated by diagonals on its own
-//! vertices, as [`crate::immersion`] makes them), the motion is valid for
+//! vertices, as [`crate::triangulate`] makes them), the motion is valid for
 //! every s exactly when (docs/design.md §13):
 //!
 //! 1. the triangulation is valid at s = 0 ([`crate::immersion::check`]);

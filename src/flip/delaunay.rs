@@ -58,7 +58,7 @@ use crate::immersion::Immersion;
 /// let del = improve(any.clone());
 /// assert!(del.is_immersion());
 /// assert!(del.min_angle() >= any.min_angle());
-/// # Ok::<(), immerse::immersion::NotSelfOverlapping>(())
+/// # Ok::<(), immerse::NotSelfOverlapping>(())
 /// ```
 pub fn improve(imm: Immersion) -> Immersion {
     let Immersion { points, triangles } = imm;

@@ -86,7 +86,7 @@ pub enum ImmersionDefect {
 ///
 /// ```
 /// use immerse::geom::Point;
-/// use immerse::immersion::check;
+/// use immerse::check;
 /// let square = [Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 1.0), Point::new(0.0, 1.0)];
 /// assert!(check(&square, &[[0, 1, 2], [0, 2, 3]]).is_ok());
 /// assert!(check(&square, &[[0, 1, 2], [1, 2, 3]]).is_err());

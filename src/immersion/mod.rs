@@ -24,12 +24,12 @@
 //!
 //! ```
 //! use immerse::geom::Point;
-//! use immerse::immersion::triangulate;
+//! use immerse::triangulate;
 //! let square = [Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 1.0), Point::new(0.0, 1.0)];
 //! let imm = triangulate(&square)?;
 //! assert_eq!(imm.triangles.len(), 2);
 //! assert!(imm.is_immersion());
-//! # Ok::<(), immerse::immersion::NotSelfOverlapping>(())
+//! # Ok::<(), immerse::NotSelfOverlapping>(())
 //! ```
 
 mod check;
@@ -153,7 +153,7 @@ pub enum NotSelfOverlapping {
     TooManyCandidates {
         /// Candidate triangles `(i, k, j)` over the feasible sub-polygons.
         candidates: u64,
-        /// [`crate::quality::MAX_MAXMIN_CANDIDATES`].
+        /// `MAX_MAXMIN_CANDIDATES` (1.5 × 10⁹).
         limit: u64,
     },
 }
@@ -231,7 +231,7 @@ pub(crate) fn precheck(points: &[Point]) -> Result<(), NotSelfOverlapping> {
 
 /// Triangulate the immersed disk bounded by `points`, or say why there is
 /// none. Returns the DP's witness: some valid triangulation, not a good one
-/// (see [`crate::quality`]).
+/// (see [`crate::triangulate_with`]).
 ///
 /// Any point list is accepted. The turning number is checked first and
 /// must be +1: a clockwise polygon is rejected with

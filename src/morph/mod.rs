@@ -12,7 +12,7 @@
 //!   out along the dual tree (`compatible`, `layout`, `paths`, `rigid`).
 //! - `output`: what a morph gives ([`Frame`], [`Morph`], [`Fallback`]).
 //!
-//! Flip sequences and the flip gate live in [`crate::flip`].
+//! Flip sequences and the flip gate live in the crate's `flip` module.
 
 pub(crate) mod output;
 mod plan;
@@ -42,7 +42,7 @@ pub struct MorphOptions {
     /// The root of the propagation. Default: [`RootChoice::Disk`].
     pub root: RootChoice,
     /// Margin ε (radians) the hybrid path keeps below 2π in every vertex
-    /// fan. Default: [`DEFAULT_FAN_MARGIN`] (0.05).
+    /// fan. Default: 0.05.
     pub fan_margin: f64,
 }
 
@@ -101,7 +101,7 @@ pub enum MorphError {
 impl MorphError {
     /// What went wrong, without the request to report a bug: for a
     /// failure that a recovery then got around (a fallback's reason).
-    pub fn reason(&self) -> String {
+    pub(crate) fn reason(&self) -> String {
         match self {
             MorphError::InvalidFrame { t, path, defect } => {
                 format!("frame at t = {t} of the {path} path is not an immersion ({defect})")

@@ -48,7 +48,7 @@ pub struct CurveMorphOptions {
     /// How far the straight segment between two keyframes may stray from
     /// the planned path, as a fraction of the larger end's bounding-box
     /// diagonal (docs/design.md §12): finite, above 0 and at most
-    /// [`MAX_KEY_TOLERANCE`]. Default [`KEY_TOLERANCE`] (0.25 %).
+    /// 0.1. Default [`KEY_TOLERANCE`] (0.25 %).
     pub key_tolerance: f64,
 }
 
@@ -83,7 +83,7 @@ impl CurveMorphOptions {
     /// # Errors
     ///
     /// [`CurveMorphError::KeyTolerance`] for a key tolerance that is not
-    /// finite, not above 0 or above [`MAX_KEY_TOLERANCE`].
+    /// finite, not above 0 or above 0.1.
     pub fn validate(&self) -> Result<(), CurveMorphError> {
         let k = self.key_tolerance;
         if k.is_finite() && k > 0.0 && k <= MAX_KEY_TOLERANCE {
@@ -181,7 +181,7 @@ pub enum CurveMorphError {
         value: f64,
     },
     /// A key tolerance that is not a fraction of the diagonal above 0 and
-    /// at most [`MAX_KEY_TOLERANCE`].
+    /// at most 0.1.
     #[error(
         "key tolerance {0} is not a fraction of the diagonal above 0 and at most 0.1; give e.g. 0.0025 (0.25 %)"
     )]
@@ -278,7 +278,7 @@ impl Correspondence {
     /// dominated on the motion measures of docs/design.md §7c by `best`,
     /// `corners` or `min-flips` (docs/motion-by-option.md); `best` still
     /// plans with the outline rule inside.
-    pub fn is_experimental(self) -> bool {
+    pub(crate) fn is_experimental(self) -> bool {
         matches!(
             self,
             Correspondence::Outline

@@ -99,9 +99,9 @@ impl FromStr for Quality {
 /// # Errors
 ///
 /// As [`crate::immersion::triangulate`]; also
-/// [`NotSelfOverlapping::TooManyPoints`] over [`MAX_MAXMIN_POINTS`] and
+/// [`NotSelfOverlapping::TooManyPoints`] over 4,000 points and
 /// [`NotSelfOverlapping::TooManyCandidates`] over
-/// [`MAX_MAXMIN_CANDIDATES`] candidate triangles (refused before the DP).
+/// 1.5 × 10⁹ candidate triangles (refused before the DP).
 pub fn triangulate_maxmin(points: &[Point]) -> Result<Immersion, NotSelfOverlapping> {
     triangulate_with_progress(points, Quality::MaxMin, &mut |_| {})
 }
@@ -112,7 +112,7 @@ pub fn triangulate_maxmin(points: &[Point]) -> Result<Immersion, NotSelfOverlapp
 ///
 /// ```
 /// use immerse::geom::Point;
-/// use immerse::quality::{triangulate_with, Quality};
+/// use immerse::{triangulate_with, Quality};
 /// let hex: Vec<Point> = (0..6)
 ///     .map(|i| {
 ///         let a = i as f64 * std::f64::consts::TAU / 6.0;
@@ -122,7 +122,7 @@ pub fn triangulate_maxmin(points: &[Point]) -> Result<Immersion, NotSelfOverlapp
 /// for q in Quality::ALL {
 ///     assert!(triangulate_with(&hex, q)?.is_immersion());
 /// }
-/// # Ok::<(), immerse::immersion::NotSelfOverlapping>(())
+/// # Ok::<(), immerse::NotSelfOverlapping>(())
 /// ```
 ///
 /// # Errors

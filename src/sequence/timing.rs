@@ -58,7 +58,7 @@ impl Ease {
     }
 
     /// The eased value of `x` ∈ [0, 1].
-    pub fn apply(&self, x: f64) -> f64 {
+    pub(crate) fn apply(&self, x: f64) -> f64 {
         match &self.0 {
             None => x,
             Some(f) => f(x),
@@ -115,7 +115,7 @@ pub struct Timing {
     /// Frames per second (above 0, at most 1000).
     pub fps: f64,
     /// Frames in all, holds included; `None` lets times, durations and
-    /// [`DEFAULT_SECONDS_PER_SEGMENT`] decide.
+    /// the default of 2 s per segment decide.
     pub frames: Option<usize>,
     /// One per key.
     pub keys: Vec<KeyTiming>,

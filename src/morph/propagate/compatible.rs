@@ -432,22 +432,17 @@ impl Compatible {
     }
 
     /// The shared triangulation.
-    pub fn triangles(&self) -> &[[u32; 3]] {
+    pub(crate) fn triangles(&self) -> &[[u32; 3]] {
         &self.triangles
     }
 
-    /// The root triangle of the propagation.
-    pub fn root_triangle(&self) -> usize {
-        self.rooted.root
-    }
-
     /// The source curve.
-    pub fn source(&self) -> &[Point] {
+    pub(crate) fn source(&self) -> &[Point] {
         &self.src
     }
 
     /// The target curve.
-    pub fn target(&self) -> &[Point] {
+    pub(crate) fn target(&self) -> &[Point] {
         &self.dst
     }
 

@@ -83,7 +83,7 @@ impl ThirdVertexPath {
     /// `straight` or `hybrid` (docs/motion-by-option.md). The planner
     /// still uses `polar` and `angle` inside: on the last leg and to
     /// recover a leg.
-    pub fn is_experimental(self) -> bool {
+    pub(crate) fn is_experimental(self) -> bool {
         matches!(
             self,
             ThirdVertexPath::Polar
@@ -104,7 +104,7 @@ impl ThirdVertexPath {
     }
 
     /// True for the paths that guarantee an immersion for every t.
-    pub fn is_guaranteed(self) -> bool {
+    pub(crate) fn is_guaranteed(self) -> bool {
         matches!(
             self,
             ThirdVertexPath::Angle

@@ -278,7 +278,7 @@ impl Correspondence {
     /// dominated on the motion measures of docs/design.md §7c by `best`,
     /// `corners` or `min-flips` (docs/motion-by-option.md); `best` still
     /// plans with the outline rule inside.
-    pub(crate) fn is_experimental(self) -> bool {
+    pub fn is_experimental(self) -> bool {
         matches!(
             self,
             Correspondence::Outline

@@ -83,7 +83,7 @@ impl ThirdVertexPath {
     /// `straight` or `hybrid` (docs/motion-by-option.md). The planner
     /// still uses `polar` and `angle` inside: on the last leg and to
     /// recover a leg.
-    pub(crate) fn is_experimental(self) -> bool {
+    pub fn is_experimental(self) -> bool {
         matches!(
             self,
             ThirdVertexPath::Polar

@@ -46,7 +46,7 @@ use crate::immersion::Immersion;
 ///
 /// ```
 /// use immerse::geom::Point;
-/// use immerse::{immersion::triangulate, quality::improve};
+/// use immerse::{improve, triangulate};
 /// let pts: Vec<Point> = (0..12)
 ///     .map(|i| {
 ///         let a = i as f64 * std::f64::consts::TAU / 12.0;

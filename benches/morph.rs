@@ -8,8 +8,8 @@
 //! `-- tween`).
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use immerse::RootChoice;
 use immerse::morph::{Compatible, CurveMorphOptions, ThirdVertexPath, Tween, morph_curves};
-use immerse::tree::RootChoice;
 use std::hint::black_box;
 
 use testkit::shapes::spiral_strip;

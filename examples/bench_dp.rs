@@ -23,9 +23,7 @@ use std::process::Command;
 use std::time::Instant;
 
 use immerse::geom::Point;
-use immerse::immersion::dp_memory_bytes;
-use immerse::quality::maxmin_memory_bytes;
-use immerse::{improve, triangulate, triangulate_maxmin};
+use immerse::{Quality, improve, triangulate, triangulate_maxmin};
 
 use testkit::stress as harness;
 
@@ -225,9 +223,9 @@ fn scale() {
                 let (bt, bm) = fmt_run(old);
                 let (at, am) = fmt_run(Some(new));
                 let tables = if title == "check" {
-                    dp_memory_bytes(n)
+                    Quality::Any.table_bytes(n)
                 } else {
-                    maxmin_memory_bytes(n)
+                    Quality::MaxMin.table_bytes(n)
                 };
                 println!(
                     "| {shape} | {n} | {bt} | {bm} | {at} | {am} | {:.0} MB |",
@@ -303,8 +301,8 @@ fn main() {
             fmt_ms(t_dp),
             fmt_ms(t_flip),
             t_mm,
-            dp_memory_bytes(n) as f64 / 1e6,
-            maxmin_memory_bytes(n) as f64 / 1e6
+            Quality::Any.table_bytes(n) as f64 / 1e6,
+            Quality::MaxMin.table_bytes(n) as f64 / 1e6
         );
     }
 }

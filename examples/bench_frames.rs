@@ -4,8 +4,8 @@
 //!
 //! Run with `cargo run --release --example bench_frames`.
 
+use immerse::RootChoice;
 use immerse::morph::{Compatible, CurveMorphOptions, ThirdVertexPath, morph_curves};
-use immerse::tree::RootChoice;
 use std::time::Instant;
 
 use testkit::shapes::spiral_strip;
@@ -27,9 +27,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let plan = Compatible::new(&a, &b, &tris, RootChoice::Disk, 0.05)?;
         for path in ThirdVertexPath::ALL {
             // Without and with the exact check of every frame that `morph`
-            // runs before it writes one: every triangle valid
-            // (`check_triangles`; the combinatorics of the fixed
-            // triangulation are checked once, as in the tool).
+            // runs before it writes one (`immerse::check`: every
+            // triangle valid, and the combinatorics of the triangulation,
+            // which the tool checks once per fixed triangulation).
             let time = |checked: bool| {
                 let runs: Vec<f64> = (0..5)
                     .map(|_| {
@@ -38,7 +38,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                         for i in 1..=200 {
                             let p = plan.positions(i as f64 / 201.0, path);
                             if checked {
-                                assert!(immerse::immersion::check_triangles(&p, &tris).is_ok());
+                                assert!(immerse::check(&p, &tris).is_ok());
                             }
                             sink += p[n / 2].x;
                         }
@@ -80,7 +80,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     let start = Instant::now();
                     let ok = (1..=200).into_par_iter().all(|i| {
                         let p = plan.positions(i as f64 / 201.0, path);
-                        immerse::immersion::check_triangles(&p, &tris).is_ok()
+                        immerse::check(&p, &tris).is_ok()
                     });
                     assert!(ok);
                     start.elapsed().as_secs_f64() / 200.0

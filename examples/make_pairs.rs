@@ -23,7 +23,7 @@
 //! Every written target is checked: it reads back with the same point
 //! count, it is self-overlapping (`triangulate_with(.., Delaunay)` succeeds)
 //! and T (Delaunay for similarity pairs) passes the exact
-//! [`immerse::immersion::check`] on it. The run fails otherwise. The table
+//! [`immerse::check`] on it. The run fails otherwise. The table
 //! printed lists, per pair, which qualities' source triangulations are
 //! immersions of the target.
 
@@ -32,11 +32,11 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use immerse::Curve;
+use immerse::check;
 use immerse::geom::Point;
 use immerse::geom::polygon::triangle_angles;
-use immerse::immersion::check;
 use immerse::morph::{area_and_centroid, lay_out};
-use immerse::quality::{Quality, triangulate_with};
+use immerse::{Quality, triangulate_with};
 use testkit::Rng;
 
 /// Seed of the deformations (xorshift64).

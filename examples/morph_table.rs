@@ -10,7 +10,7 @@
 //! area over the larger endpoint's), the smallest triangle-area share and
 //! the valid frames of the requested path before any fallback. A quality
 //! whose source triangulation is not an immersion of the target (exact
-//! [`immerse::immersion::check`]) gets an n/a row with the defect. The
+//! [`immerse::check`]) gets an n/a row with the defect. The
 //! metrics are those of the morph as emitted, so after a fallback they are
 //! the `hybrid` frames'. A summary per quality follows (medians under
 //! `hybrid`, over all pairs where the quality applies and over the pairs
@@ -19,11 +19,11 @@
 use std::path::Path;
 
 use immerse::Curve;
+use immerse::RootChoice;
+use immerse::check;
 use immerse::frames::{Frame, metrics};
-use immerse::immersion::check;
-use immerse::morph::{Compatible, DEFAULT_FAN_MARGIN, ThirdVertexPath, morph_with};
-use immerse::quality::{Quality, triangulate_with};
-use immerse::tree::RootChoice;
+use immerse::morph::{Compatible, MorphOptions, ThirdVertexPath, morph_with};
+use immerse::{Quality, triangulate_with};
 
 /// Frames per morph.
 const FRAMES: usize = 101;
@@ -109,7 +109,10 @@ fn main() {
         .collect();
     let mut hybrid: Vec<HybridCell> = Vec::new();
     let (mut cells, mut fallbacks, mut fell) = (0usize, 0usize, [0usize; 2]);
-    println!("{FRAMES} frames per morph; root: disk centre; fan margin {DEFAULT_FAN_MARGIN} rad.");
+    println!(
+        "{FRAMES} frames per morph; root: disk centre; fan margin {} rad.",
+        MorphOptions::DEFAULT.fan_margin
+    );
     println!(
         "Columns: AR = area-matrix rank, Var = variance of per-frame area change (areas / source area), \
          CV = its standard deviation / mean, \
@@ -149,7 +152,7 @@ fn main() {
                 &dst.points,
                 &tri,
                 RootChoice::Disk,
-                DEFAULT_FAN_MARGIN,
+                MorphOptions::DEFAULT.fan_margin,
             )
             .unwrap_or_else(|e| panic!("{name} {q}: {e}"));
             for path in PATHS {

@@ -16,15 +16,16 @@
 //!
 //! A frame counts as self-overlapping when [`immerse::Curve::from_points`]
 //! cleans it (an error counts as not self-overlapping) and
-//! [`immerse::immersion::triangulate`] finds an immersed disk for the
+//! [`immerse::triangulate`] finds an immersed disk for the
 //! cleaned points. Cleaning reverses a clockwise frame, so a frame that is
 //! self-overlapping only after reversal (turned inside out relative to the
 //! source) is counted separately as *flipped*.
 
 use immerse::Curve;
 use immerse::Point;
-use immerse::immersion::{NotSelfOverlapping, triangulate};
-use immerse::morph::{Counts, CurveMorphOptions, equal_counts, morph_curves};
+use immerse::correspond::equalize;
+use immerse::morph::{CurveMorphOptions, morph_curves};
+use immerse::{NotSelfOverlapping, triangulate};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -144,7 +145,7 @@ fn fractions() -> Vec<f64> {
 /// Vertex i ↔ i after [`equal_counts`] with [`Counts::Insert`], positions
 /// (1 − t) a + t b.
 fn linear(a: &[Point], b: &[Point], ts: &[f64]) -> Vec<Vec<Point>> {
-    let (a, b) = equal_counts(a, b, Counts::Insert);
+    let (a, b) = equalize(a, b);
     ts.iter()
         .map(|&t| {
             a.iter()

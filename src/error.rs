@@ -5,7 +5,7 @@
 //! self-overlapping: a result, not a failure) and a broken internal
 //! invariant (a bug in immerse; the message says so).
 
-pub use crate::curve::CurveError;
+use crate::curve::CurveError;
 
 /// Any error of the library.
 #[derive(Debug, thiserror::Error)]

@@ -17,8 +17,8 @@
 //! ```
 //!
 //! Every stage uses [`geom`] for positions and exact predicates; [`geom`]
-//! and [`input`] (capped file reading) re-export the `immerse-base` crate,
-//! which `immerse-mesh` shares.
+//! re-exports the `immerse-base` crate's (with `input`, its capped file
+//! reading), which `immerse-mesh` shares.
 //!
 //! Between frames, players move every vertex on a straight line;
 //! [`certify`] decides exactly whether such a segment stays an immersed
@@ -80,21 +80,27 @@ pub mod certify;
 pub mod correspond;
 pub mod curve;
 pub mod drawing;
-pub mod error;
-pub mod flip;
+mod error;
+mod flip;
 pub mod frames;
 pub mod geom;
-pub mod immersion;
-pub mod input;
+mod immersion;
 pub mod morph;
-pub mod quality;
+mod quality;
 pub mod sequence;
-pub mod tree;
+mod tree;
 
 pub use curve::Curve;
 pub use error::{Error, Result};
 pub use geom::Point;
-pub use immersion::{Immersion, ImmersionDefect, NotSelfOverlapping, triangulate};
+pub use immersion::{
+    Immersion, ImmersionDefect, NotSelfOverlapping, check, common_triangulation, is_valid_triangle,
+    triangulate,
+};
 pub use morph::{CurveMorphOptions, Keyframe, Tween};
-pub use quality::{Quality, improve, triangulate_maxmin, triangulate_with};
+pub use quality::{
+    Quality, UnknownQuality, improve, triangulate_maxmin, triangulate_with,
+    triangulate_with_progress,
+};
 pub use sequence::{Key, Sequence, SequenceOptions};
+pub use tree::{RootChoice, Spine, TreeError};

@@ -12,8 +12,8 @@ use arbitrary::Unstructured;
 use immerse::curve::{Curve, Format, MAX_COORDINATE, MAX_POINTS, MIN_COORDINATE};
 use immerse::geom::polygon::{Turning, turning_number};
 use immerse::geom::{Orientation, Point, orient};
-use immerse::immersion::{NotSelfOverlapping, check, is_valid_triangle, triangulate};
-use immerse::quality::{improve, triangulate_maxmin};
+use immerse::{NotSelfOverlapping, check, is_valid_triangle, triangulate};
+use immerse::{improve, triangulate_maxmin};
 
 /// Most points [`check_points`] builds: the DP, the max–min DP and the
 /// exhaustive comparison stay well under a millisecond at this size.

@@ -10,7 +10,7 @@
 //! raises `RuntimeError`. Every computation that plans, morphs,
 //! triangulates or certifies runs with the GIL released.
 
-use immerse::certify::read::{AnimatedPath, Animation, Format, MAX_ANIMATION_BYTES, Play, ReadKey};
+use immerse::certify::{AnimatedPath, Animation, Format, MAX_ANIMATION_BYTES, Play, ReadKey};
 use immerse::certify::{CertifyError, MotionOptions, Player, certify_animation, read_animation};
 use immerse::geom::Point;
 use immerse::geom::polygon::{self, Turning};
@@ -21,7 +21,6 @@ use immerse::morph::{
 use immerse::sequence::{
     Ease, Hint, HintAt, Key, KeyTiming, SequenceError, SequenceOptions, Timing,
 };
-use immerse::tree::{DualTree, RootChoice, root_triangle};
 use immerse::{Curve, Quality};
 use immerse_render::Easing;
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
@@ -431,12 +430,9 @@ fn triangulate(
     let (curve, label) = read_curve(py, input, "points")?;
     let result = py.detach(|| {
         immerse::triangulate_with(&curve.points, quality).map(|imm| {
-            let tree = DualTree::new(imm.points.len(), &imm.triangles);
-            let parts = tree.map(|tree| {
-                let spine = tree.spine(&imm.points);
-                let root = root_triangle(&tree, &imm.points, RootChoice::Disk);
-                (spine, root)
-            });
+            let parts = imm
+                .spine()
+                .and_then(|spine| Ok((spine, imm.root_triangle(immerse::RootChoice::Disk)?)));
             (imm, parts)
         })
     });

@@ -4,7 +4,7 @@
 //! Players (Lottie, SVG SMIL, CSS, game engines) move every vertex on a
 //! straight line between stored shapes, `p(s) = P + s(Q − P)`. With the
 //! triangulation fixed (an n-gon triangulated by diagonals on its own
-//! vertices, as [`crate::immersion`] makes them), the motion is valid for
+//! vertices, as [`crate::triangulate`] makes them), the motion is valid for
 //! every s exactly when (docs/design.md §13):
 //!
 //! 1. the triangulation is valid at s = 0 ([`crate::immersion::check`]);
@@ -68,18 +68,22 @@
 //! # Ok::<(), immerse::certify::CertifyError>(())
 //! ```
 
-pub mod animation;
+mod animation;
 mod exact;
 mod filter;
-pub mod motion;
-pub mod read;
+mod motion;
+mod read;
 
 use std::cmp::Ordering;
 use std::fmt;
 
-pub use animation::{AnimationReport, Answer, certify_animation};
-pub use motion::{MotionOptions, MotionReport, Verdict, certify_motion};
-pub use read::{Animation, read_animation};
+pub use animation::{
+    AnimationReport, Answer, FailureReport, PathOutcome, SegmentOutcome, certify_animation,
+};
+pub use motion::{MotionOptions, MotionReport, Piece, Source, Verdict, certify_motion};
+pub use read::{
+    AnimatedPath, Animation, Format, MAX_ANIMATION_BYTES, Play, ReadError, ReadKey, read_animation,
+};
 
 use exact::{Alg, Quad, Scaled, fan_ok, first_nonpositive, positive_on};
 use num_bigint::BigInt;

@@ -327,7 +327,7 @@ impl Oracle<'_> {
 /// v → v+1 while w is not"; no corner on a zero-length edge), and chords
 /// are filtered by the same necessary cone test as the decision DP.
 /// O(n²) exact orientations for the masks, O(n³/64) word operations.
-pub fn triangulate_exact(start: &[Point], end: &[Point], s: f64) -> Option<Vec<[u32; 3]>> {
+pub(crate) fn triangulate_exact(start: &[Point], end: &[Point], s: f64) -> Option<Vec<[u32; 3]>> {
     let n = start.len();
     if n < 3 {
         return None;

@@ -26,7 +26,7 @@ const SCORE_SAMPLES: usize = 512;
 /// matches vertex `(i + shift) % n` of `b'`. The curve with fewer vertices
 /// gets vertices inserted on its edges; original vertices stay exact and in
 /// order. Symmetric: `align(b, a)` pairs the same vertices.
-pub fn align(a: &[Point], b: &[Point]) -> (Vec<Point>, Vec<Point>, usize) {
+pub(crate) fn align(a: &[Point], b: &[Point]) -> (Vec<Point>, Vec<Point>, usize) {
     if small_second(a, b) {
         back(align_small_to_large(b, a))
     } else {
@@ -87,7 +87,7 @@ const MOST_CORNERS: usize = 16;
 /// their shares of the perimeter, to a tenth), then the best score as in
 /// [`align`]. `None` when neither kind of corner matches up.
 /// Symmetric, as [`align`].
-pub fn align_corners(a: &[Point], b: &[Point]) -> Option<Pairing> {
+pub(crate) fn align_corners(a: &[Point], b: &[Point]) -> Option<Pairing> {
     let (a, b, swap) = if small_second(a, b) {
         (b, a, true)
     } else {

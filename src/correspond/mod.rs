@@ -5,6 +5,6 @@ mod align;
 mod compat;
 mod resample;
 
-pub use align::{align, align_corners};
+pub(crate) use align::{align, align_corners};
 pub use compat::{compatible_shift, degree_sequence, from_degree_sequence, shift_triangles};
 pub use resample::{equalize, insert_vertices, resample_arc_length};

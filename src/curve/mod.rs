@@ -31,7 +31,7 @@ pub use svg::{MAX_SVG_PATH_NUMBER, MAX_SVG_SHAPES, SVG_FLATTEN_TOLERANCE, SvgSha
 
 use crate::geom::Point;
 use crate::geom::polygon::{self, Turning};
-use crate::input::ReadError;
+use immerse_base::input::ReadError;
 use std::path::Path;
 
 /// Largest curve file accepted, in bytes (64 MiB).
@@ -243,9 +243,9 @@ impl Curve {
 }
 
 /// Reads a curve file through the [`MAX_FILE_BYTES`] cap
-/// ([`crate::input::read_capped`]: devices, FIFOs and pipes included).
+/// ([`immerse_base::input::read_capped`]: devices, FIFOs and pipes included).
 pub(crate) fn read_file(path: &Path, label: &str) -> Result<Vec<u8>, CurveError> {
-    crate::input::read_capped(path, MAX_FILE_BYTES).map_err(|e| match e {
+    immerse_base::input::read_capped(path, MAX_FILE_BYTES).map_err(|e| match e {
         ReadError::IsDirectory => CurveError::IsDirectory {
             path: label.to_string(),
         },

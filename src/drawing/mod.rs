@@ -41,7 +41,7 @@ use rayon::prelude::*;
 use std::path::Path;
 
 /// Most shapes one drawing may hold.
-pub const MAX_SHAPES: usize = crate::curve::MAX_SVG_SHAPES;
+pub(crate) const MAX_SHAPES: usize = crate::curve::MAX_SVG_SHAPES;
 
 /// One closed shape of a drawing with its style.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -247,7 +247,7 @@ impl Drawing {
     }
 
     /// The drawing of one curve, painted with `style`.
-    pub fn of_curve(curve: Curve, style: Style) -> Drawing {
+    pub(crate) fn of_curve(curve: Curve, style: Style) -> Drawing {
         Drawing {
             shapes: vec![Shape {
                 id: String::new(),

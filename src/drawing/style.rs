@@ -16,7 +16,7 @@ pub struct Color {
 
 impl Color {
     /// Black.
-    pub const BLACK: Color = Color { r: 0, g: 0, b: 0 };
+    pub(crate) const BLACK: Color = Color { r: 0, g: 0, b: 0 };
 
     /// `#rrggbb`.
     pub fn hex(self) -> String {
@@ -45,7 +45,7 @@ impl Color {
 
     /// The colour in OKLab (Björn Ottosson, "A perceptual color space for
     /// image processing").
-    pub fn to_oklab(self) -> [f64; 3] {
+    pub(crate) fn to_oklab(self) -> [f64; 3] {
         let lin = |c: u8| {
             let c = f64::from(c) / 255.0;
             if c <= 0.04045 {
@@ -91,7 +91,7 @@ impl Color {
 
     /// The colour at `t` between `self` (t = 0) and `other` (t = 1), on a
     /// straight line in OKLab.
-    pub fn lerp(self, other: Color, t: f64) -> Color {
+    pub(crate) fn lerp(self, other: Color, t: f64) -> Color {
         if t <= 0.0 {
             return self;
         }
@@ -127,7 +127,7 @@ pub enum FillRule {
 
 impl FillRule {
     /// True when a point of winding number `w` is painted.
-    pub fn paints(self, w: i64) -> bool {
+    pub(crate) fn paints(self, w: i64) -> bool {
         match self {
             FillRule::Nonzero => w != 0,
             FillRule::Evenodd => w % 2 != 0,
@@ -179,7 +179,7 @@ impl Style {
     /// linearly. A colour on one side only is kept as it is in between
     /// (a stroke's width then grows from or shrinks to zero). The stroke
     /// width is linear; the fill rule is the source's until the end.
-    pub fn lerp(&self, other: &Style, t: f64) -> Style {
+    pub(crate) fn lerp(&self, other: &Style, t: f64) -> Style {
         if t <= 0.0 {
             return *self;
         }

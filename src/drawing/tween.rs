@@ -132,7 +132,8 @@ pub struct ShapeKeys {
 }
 
 impl ShapeKeys {
-    /// The shape's paint at `t` ([`Style::lerp`]).
+    /// The shape's paint at `t`: the two styles interpolated (colours in
+    /// OKLab).
     pub fn style_at(&self, t: f64) -> Style {
         self.from.lerp(&self.to, t)
     }

@@ -46,7 +46,7 @@ use crate::immersion::Immersion;
 ///
 /// ```
 /// use immerse::geom::Point;
-/// use immerse::{immersion::triangulate, quality::improve};
+/// use immerse::{improve, triangulate};
 /// let pts: Vec<Point> = (0..12)
 ///     .map(|i| {
 ///         let a = i as f64 * std::f64::consts::TAU / 12.0;
@@ -58,7 +58,7 @@ use crate::immersion::Immersion;
 /// let del = improve(any.clone());
 /// assert!(del.is_immersion());
 /// assert!(del.min_angle() >= any.min_angle());
-/// # Ok::<(), immerse::immersion::NotSelfOverlapping>(())
+/// # Ok::<(), immerse::NotSelfOverlapping>(())
 /// ```
 pub fn improve(imm: Immersion) -> Immersion {
     let Immersion { points, triangles } = imm;

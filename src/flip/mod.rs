@@ -8,14 +8,14 @@
 //! cross when their endpoints interleave around the polygon.
 
 pub(crate) mod delaunay;
-pub mod sequence;
+pub(crate) mod sequence;
 
 use rustc_hash::FxHashMap;
 
 /// One flip: the diagonal `from` is replaced by `to` in the quad they
 /// share.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct Flip {
+pub(crate) struct Flip {
     /// The diagonal removed, `(min, max)`.
     pub from: (u32, u32),
     /// The diagonal added, `(min, max)`.
@@ -39,7 +39,7 @@ pub(crate) fn canonical(mut t: [u32; 3]) -> [u32; 3] {
 
 /// Do the diagonals `(a, b)` and `(c, d)` of a convex polygon cross
 /// (strictly interleaved endpoints)?
-pub fn crosses(d1: (u32, u32), d2: (u32, u32)) -> bool {
+pub(crate) fn crosses(d1: (u32, u32), d2: (u32, u32)) -> bool {
     let (a, b) = key(d1.0, d1.1);
     let (c, d) = key(d2.0, d2.1);
     (a < c && c < b && b < d) || (c < a && a < d && d < b)
@@ -47,7 +47,7 @@ pub fn crosses(d1: (u32, u32), d2: (u32, u32)) -> bool {
 
 /// A triangulation of the abstract n-gon that can be flipped.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct FlipTriangulation {
+pub(crate) struct FlipTriangulation {
     n: u32,
     triangles: Vec<[u32; 3]>,
     /// For each edge (min, max), the one or two triangles containing it.
@@ -56,7 +56,7 @@ pub struct FlipTriangulation {
 
 impl FlipTriangulation {
     /// Wraps a triangulation of the n-gon (corners in cyclic order).
-    pub fn new(n: usize, triangles: &[[u32; 3]]) -> FlipTriangulation {
+    pub(crate) fn new(n: usize, triangles: &[[u32; 3]]) -> FlipTriangulation {
         let mut t = FlipTriangulation {
             n: n as u32,
             triangles: triangles.iter().map(|&t| canonical(t)).collect(),
@@ -98,12 +98,12 @@ impl FlipTriangulation {
     }
 
     /// The number of polygon vertices.
-    pub fn vertex_count(&self) -> usize {
+    pub(crate) fn vertex_count(&self) -> usize {
         self.n as usize
     }
 
     /// The triangles, corners in cyclic order, smallest first.
-    pub fn triangles(&self) -> &[[u32; 3]] {
+    pub(crate) fn triangles(&self) -> &[[u32; 3]] {
         &self.triangles
     }
 
@@ -113,7 +113,7 @@ impl FlipTriangulation {
     }
 
     /// The diagonals, each `(min, max)`, sorted.
-    pub fn diagonals(&self) -> Vec<(u32, u32)> {
+    pub(crate) fn diagonals(&self) -> Vec<(u32, u32)> {
         let n = self.n;
         let mut d: Vec<(u32, u32)> = self
             .edges
@@ -128,7 +128,7 @@ impl FlipTriangulation {
     /// The quad around diagonal `(a, c)`: `[a, b, c, d]` in cyclic order
     /// (`a` the smaller end) with the two triangles `(a, b, c)` and
     /// `(c, d, a)`, and their indices; `None` for a side or a missing edge.
-    pub fn quad(&self, a: u32, c: u32) -> Option<([u32; 4], [usize; 2])> {
+    pub(crate) fn quad(&self, a: u32, c: u32) -> Option<([u32; 4], [usize; 2])> {
         let slot = self.edges.get(&key(a, c))?;
         if slot[1] == NONE {
             return None;
@@ -155,7 +155,7 @@ impl FlipTriangulation {
     /// Flips diagonal `(a, c)` and returns the flip, or `None` when it is a
     /// side or not an edge. The two triangles keep their indices: `(a, b,
     /// c)` becomes `(a, b, d)` and `(c, d, a)` becomes `(b, c, d)`.
-    pub fn flip(&mut self, a: u32, c: u32) -> Option<Flip> {
+    pub(crate) fn flip(&mut self, a: u32, c: u32) -> Option<Flip> {
         let ([a, b, c, d], [t0, t1]) = self.quad(a, c)?;
         self.unindex(t0);
         self.unindex(t1);
@@ -172,7 +172,7 @@ impl FlipTriangulation {
     /// The diagonal of the triangle at `x` that the segment `(x, y)`
     /// enters, or `None` when `(x, y)` is already an edge. Walks the fan of
     /// `x` from the side `(x, x + 1)`: O(degree of x).
-    pub fn entered(&self, x: u32, y: u32) -> Option<(u32, u32)> {
+    pub(crate) fn entered(&self, x: u32, y: u32) -> Option<(u32, u32)> {
         if self.has_edge(x, y) || x == y {
             return None;
         }

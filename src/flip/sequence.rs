@@ -9,7 +9,7 @@
 //! number of crossings at that moment, and an inserted diagonal is never
 //! flipped again (target diagonals do not cross each other).
 
-pub use crate::flip::{Flip, FlipTriangulation, crosses};
+pub(crate) use crate::flip::{Flip, FlipTriangulation, crosses};
 use crate::flip::{canonical, key};
 use crate::geom::Point;
 use crate::geom::polygon::min_angle_sine;
@@ -78,17 +78,10 @@ impl CrossingCounter {
     }
 }
 
-/// The number of crossings between the diagonals of two triangulations.
-pub fn crossing_count(d1: &[(u32, u32)], d2: &[(u32, u32)]) -> usize {
-    d1.iter()
-        .map(|&a| d2.iter().filter(|&&b| crosses(a, b)).count())
-        .sum()
-}
-
 /// The flips that turn `from` into `to` (both triangulations of the
 /// n-gon), by the insertion order of Mukherjee & Gopi §6.2: `to`'s diagonals by
 /// increasing number of crossings with `from`'s.
-pub fn flip_sequence(n: usize, from: &[[u32; 3]], to: &[[u32; 3]]) -> Vec<Flip> {
+pub(crate) fn flip_sequence(n: usize, from: &[[u32; 3]], to: &[[u32; 3]]) -> Vec<Flip> {
     let mut cur = FlipTriangulation::new(n, from);
     let target = FlipTriangulation::new(n, to).diagonals();
     let source = cur.diagonals();
@@ -126,7 +119,7 @@ pub fn flip_sequence(n: usize, from: &[[u32; 3]], to: &[[u32; 3]]) -> Vec<Flip> 
 /// f(d + 1) = f(d) + #{(d, w): w < c or w > d + 1} − #{(v, d + 1): c < v < d},
 /// and each diagonal of `t2`, under each shift, is one chord (c, d). The
 /// first endpoints are shared out between the cores.
-pub fn crossings_per_shift(n: usize, t1: &[[u32; 3]], t2: &[[u32; 3]]) -> Vec<usize> {
+pub(crate) fn crossings_per_shift(n: usize, t1: &[[u32; 3]], t2: &[[u32; 3]]) -> Vec<usize> {
     use rayon::prelude::*;
     let d1 = FlipTriangulation::new(n, t1).diagonals();
     let d2 = FlipTriangulation::new(n, t2).diagonals();
@@ -206,6 +199,14 @@ pub(crate) fn gate(p: &[Point], quad: [u32; 4], floor: f64) -> Option<f64> {
 mod tests {
     use super::*;
     use crate::morph::propagate::compatible::tests::{Rng, random_triangulation};
+
+    /// The number of crossings between the diagonals of two
+    /// triangulations, pair by pair: the oracle of the fast counts.
+    fn crossing_count(d1: &[(u32, u32)], d2: &[(u32, u32)]) -> usize {
+        d1.iter()
+            .map(|&a| d2.iter().filter(|&&b| crosses(a, b)).count())
+            .sum()
+    }
 
     #[test]
     fn flip_sequence_reaches_the_target_at_the_counted_cost() {

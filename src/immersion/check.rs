@@ -86,7 +86,7 @@ pub enum ImmersionDefect {
 ///
 /// ```
 /// use immerse::geom::Point;
-/// use immerse::immersion::check;
+/// use immerse::check;
 /// let square = [Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 1.0), Point::new(0.0, 1.0)];
 /// assert!(check(&square, &[[0, 1, 2], [0, 2, 3]]).is_ok());
 /// assert!(check(&square, &[[0, 1, 2], [1, 2, 3]]).is_err());
@@ -226,7 +226,10 @@ fn counting_sort(
 /// # Errors
 ///
 /// [`ImmersionDefect::InvalidTriangle`] for the first invalid triangle.
-pub fn check_triangles(points: &[Point], triangles: &[[u32; 3]]) -> Result<(), ImmersionDefect> {
+pub(crate) fn check_triangles(
+    points: &[Point],
+    triangles: &[[u32; 3]],
+) -> Result<(), ImmersionDefect> {
     for (t, &[a, b, c]) in triangles.iter().enumerate() {
         if !is_valid_triangle(points, a as usize, b as usize, c as usize) {
             return Err(ImmersionDefect::InvalidTriangle {

@@ -24,12 +24,12 @@
 //!
 //! ```
 //! use immerse::geom::Point;
-//! use immerse::immersion::triangulate;
+//! use immerse::triangulate;
 //! let square = [Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 1.0), Point::new(0.0, 1.0)];
 //! let imm = triangulate(&square)?;
 //! assert_eq!(imm.triangles.len(), 2);
 //! assert!(imm.is_immersion());
-//! # Ok::<(), immerse::immersion::NotSelfOverlapping>(())
+//! # Ok::<(), immerse::NotSelfOverlapping>(())
 //! ```
 
 mod check;
@@ -37,12 +37,14 @@ pub(crate) mod dp;
 pub(crate) mod valid;
 
 pub(crate) use check::check_structure;
-pub use check::{ImmersionDefect, check, check_triangles};
+pub(crate) use check::check_triangles;
+pub use check::{ImmersionDefect, check};
 pub use valid::is_valid_triangle;
 
 use crate::curve::{MAX_COORDINATE, MIN_COORDINATE};
 use crate::geom::Point;
 use crate::geom::polygon::{Turning, triangle_angles, turning_number};
+use crate::tree::{DualTree, RootChoice, Spine, TreeError, root_triangle};
 
 /// A triangulated immersed disk: the boundary polygon and n − 2 triangles.
 ///
@@ -73,6 +75,28 @@ impl Immersion {
     /// True when [`check`] finds no defect.
     pub fn is_immersion(&self) -> bool {
         check(&self.points, &self.triangles).is_ok()
+    }
+
+    /// The spine of the triangulation's dual tree, with its pivot triangle
+    /// and pivot vertex (docs/design.md §4; Mukherjee & Gopi §6.1).
+    ///
+    /// # Errors
+    ///
+    /// [`TreeError`] when the triangles are not a triangulation of the
+    /// polygon (never for an immersion this crate triangulated).
+    pub fn spine(&self) -> Result<Spine, TreeError> {
+        Ok(DualTree::new(self.points.len(), &self.triangles)?.spine(&self.points))
+    }
+
+    /// The triangle that roots a morph's propagation along the dual tree
+    /// (docs/design.md §4; Mukherjee & Gopi §5).
+    ///
+    /// # Errors
+    ///
+    /// As [`Immersion::spine`].
+    pub fn root_triangle(&self, choice: RootChoice) -> Result<usize, TreeError> {
+        let tree = DualTree::new(self.points.len(), &self.triangles)?;
+        Ok(root_triangle(&tree, &self.points, choice))
     }
 }
 
@@ -129,7 +153,7 @@ pub enum NotSelfOverlapping {
     TooManyCandidates {
         /// Candidate triangles `(i, k, j)` over the feasible sub-polygons.
         candidates: u64,
-        /// [`crate::quality::MAX_MAXMIN_CANDIDATES`].
+        /// `MAX_MAXMIN_CANDIDATES` (1.5 × 10⁹).
         limit: u64,
     },
 }
@@ -164,7 +188,7 @@ fn thousands(x: u64) -> String {
 
 /// Most points the decision DP accepts: its four n × n bit tables take
 /// n²/2 bytes (200 MB at this limit) and its time grows as n³/64 at worst.
-pub const MAX_DP_POINTS: usize = 20_000;
+pub(crate) const MAX_DP_POINTS: usize = 20_000;
 
 /// Check the preconditions shared by every triangulator: at least 3 points,
 /// every coordinate in the predicates' exact range, and turning number
@@ -207,7 +231,7 @@ pub(crate) fn precheck(points: &[Point]) -> Result<(), NotSelfOverlapping> {
 
 /// Triangulate the immersed disk bounded by `points`, or say why there is
 /// none. Returns the DP's witness: some valid triangulation, not a good one
-/// (see [`crate::quality`]).
+/// (see [`crate::triangulate_with`]).
 ///
 /// Any point list is accepted. The turning number is checked first and
 /// must be +1: a clockwise polygon is rejected with
@@ -230,7 +254,7 @@ pub fn triangulate(points: &[Point]) -> Result<Immersion, NotSelfOverlapping> {
 /// # Errors
 ///
 /// As [`triangulate`].
-pub fn triangulate_progress(
+pub(crate) fn triangulate_progress(
     points: &[Point],
     progress: &mut dyn FnMut(f64),
 ) -> Result<Immersion, NotSelfOverlapping> {
@@ -262,7 +286,7 @@ pub fn triangulate_progress(
 ///
 /// ```
 /// use immerse::Point;
-/// use immerse::immersion::{common_triangulation, Immersion};
+/// use immerse::{common_triangulation, Immersion};
 /// let square = [Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 1.0), Point::new(0.0, 1.0)];
 /// // A dart (vertex 3 is reflex): only the diagonal 1–3 is inside it.
 /// let dart = [Point::new(0.0, 0.0), Point::new(2.0, -2.0), Point::new(4.0, 0.0), Point::new(2.0, -1.0)];
@@ -315,7 +339,7 @@ pub(crate) fn common_triangulation_with(
 
 /// Bytes of working memory the decision DP uses for `n` points (reported by
 /// the benchmarks).
-pub fn dp_memory_bytes(n: usize) -> usize {
+pub(crate) fn dp_memory_bytes(n: usize) -> usize {
     let words = n.div_ceil(64).max(1);
     let summary = words.div_ceil(64);
     // Q rows, Q columns, half-plane masks and their transpose; the two

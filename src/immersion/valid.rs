@@ -315,7 +315,7 @@ impl Corners<'_> {
 ///
 /// ```
 /// use immerse::geom::Point;
-/// use immerse::immersion::is_valid_triangle;
+/// use immerse::is_valid_triangle;
 /// let square = [Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 1.0), Point::new(0.0, 1.0)];
 /// assert!(is_valid_triangle(&square, 0, 1, 2));
 /// assert!(!is_valid_triangle(&square, 2, 1, 0));

@@ -12,7 +12,7 @@
 //!   out along the dual tree (`compatible`, `layout`, `paths`, `rigid`).
 //! - `output`: what a morph gives ([`Frame`], [`Morph`], [`Fallback`]).
 //!
-//! Flip sequences and the flip gate live in [`crate::flip`].
+//! Flip sequences and the flip gate live in the crate's `flip` module.
 
 pub(crate) mod output;
 mod plan;
@@ -23,14 +23,12 @@ mod tween;
 pub use output::{Fallback, Frame, Morph};
 pub use plan::{
     Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, KEY_TOLERANCE,
-    MAX_KEY_TOLERANCE, MorphReport, Side, equal_counts, morph_curves,
+    MorphReport, Side, morph_curves,
 };
-pub use propagate::compatible::{
-    Compatible, CompatibleError, DEFAULT_FAN_MARGIN, STRAIGHT_AREA_RANGE, area_and_centroid,
-    lay_out,
-};
+pub(crate) use propagate::compatible::DEFAULT_FAN_MARGIN;
+pub use propagate::compatible::{Compatible, CompatibleError, area_and_centroid, lay_out};
 pub use propagate::paths::ThirdVertexPath;
-pub use staged::Staged;
+pub(crate) use staged::Staged;
 pub use tween::{Keyframe, Tween, timed_keyframes};
 
 use crate::tree::RootChoice;
@@ -44,7 +42,7 @@ pub struct MorphOptions {
     /// The root of the propagation. Default: [`RootChoice::Disk`].
     pub root: RootChoice,
     /// Margin ε (radians) the hybrid path keeps below 2π in every vertex
-    /// fan. Default: [`DEFAULT_FAN_MARGIN`] (0.05).
+    /// fan. Default: 0.05.
     pub fan_margin: f64,
 }
 
@@ -103,7 +101,7 @@ pub enum MorphError {
 impl MorphError {
     /// What went wrong, without the request to report a bug: for a
     /// failure that a recovery then got around (a fallback's reason).
-    pub fn reason(&self) -> String {
+    pub(crate) fn reason(&self) -> String {
         match self {
             MorphError::InvalidFrame { t, path, defect } => {
                 format!("frame at t = {t} of the {path} path is not an immersion ({defect})")

@@ -43,7 +43,7 @@ impl Frame {
     }
 
     /// The smallest triangle angle of the frame, in radians.
-    pub fn min_angle(&self) -> f64 {
+    pub(crate) fn min_angle(&self) -> f64 {
         crate::geom::polygon::min_triangle_angle(&self.points, &self.triangles)
     }
 

@@ -48,7 +48,7 @@ pub struct CurveMorphOptions {
     /// How far the straight segment between two keyframes may stray from
     /// the planned path, as a fraction of the larger end's bounding-box
     /// diagonal (docs/design.md §12): finite, above 0 and at most
-    /// [`MAX_KEY_TOLERANCE`]. Default [`KEY_TOLERANCE`] (0.25 %).
+    /// 0.1. Default [`KEY_TOLERANCE`] (0.25 %).
     pub key_tolerance: f64,
 }
 
@@ -58,7 +58,7 @@ pub const KEY_TOLERANCE: f64 = 0.0025;
 
 /// The largest [`CurveMorphOptions::key_tolerance`] accepted: 10 % of the
 /// diagonal.
-pub const MAX_KEY_TOLERANCE: f64 = 0.1;
+pub(crate) const MAX_KEY_TOLERANCE: f64 = 0.1;
 
 impl CurveMorphOptions {
     /// The defaults.
@@ -83,7 +83,7 @@ impl CurveMorphOptions {
     /// # Errors
     ///
     /// [`CurveMorphError::KeyTolerance`] for a key tolerance that is not
-    /// finite, not above 0 or above [`MAX_KEY_TOLERANCE`].
+    /// finite, not above 0 or above 0.1.
     pub fn validate(&self) -> Result<(), CurveMorphError> {
         let k = self.key_tolerance;
         if k.is_finite() && k > 0.0 && k <= MAX_KEY_TOLERANCE {
@@ -181,7 +181,7 @@ pub enum CurveMorphError {
         value: f64,
     },
     /// A key tolerance that is not a fraction of the diagonal above 0 and
-    /// at most [`MAX_KEY_TOLERANCE`].
+    /// at most 0.1.
     #[error(
         "key tolerance {0} is not a fraction of the diagonal above 0 and at most 0.1; give e.g. 0.0025 (0.25 %)"
     )]
@@ -192,7 +192,7 @@ pub enum CurveMorphError {
 }
 
 /// Equalises vertex counts as `counts` says.
-pub fn equal_counts(a: &[Point], b: &[Point], counts: Counts) -> (Vec<Point>, Vec<Point>) {
+pub(crate) fn equal_counts(a: &[Point], b: &[Point], counts: Counts) -> (Vec<Point>, Vec<Point>) {
     let n = a.len().max(b.len());
     match counts {
         Counts::Resample => (resample_arc_length(a, n), resample_arc_length(b, n)),

@@ -56,6 +56,17 @@ impl Quality {
             Quality::MaxMin => "maxmin",
         }
     }
+
+    /// Bytes of the DP tables that [`triangulate_with`] keeps for `n`
+    /// points at this quality: the decision DP's (n²/2 bytes) for
+    /// [`Quality::Any`] and [`Quality::Delaunay`], and the max–min DP's
+    /// (about 36n² bytes more) for [`Quality::MaxMin`].
+    pub fn table_bytes(self, n: usize) -> usize {
+        match self {
+            Quality::Any | Quality::Delaunay => crate::immersion::dp_memory_bytes(n),
+            Quality::MaxMin => optimal::memory_bytes(n),
+        }
+    }
 }
 
 impl fmt::Display for Quality {
@@ -88,9 +99,9 @@ impl FromStr for Quality {
 /// # Errors
 ///
 /// As [`crate::immersion::triangulate`]; also
-/// [`NotSelfOverlapping::TooManyPoints`] over [`MAX_MAXMIN_POINTS`] and
+/// [`NotSelfOverlapping::TooManyPoints`] over 4,000 points and
 /// [`NotSelfOverlapping::TooManyCandidates`] over
-/// [`MAX_MAXMIN_CANDIDATES`] candidate triangles (refused before the DP).
+/// 1.5 × 10⁹ candidate triangles (refused before the DP).
 pub fn triangulate_maxmin(points: &[Point]) -> Result<Immersion, NotSelfOverlapping> {
     triangulate_with_progress(points, Quality::MaxMin, &mut |_| {})
 }
@@ -101,7 +112,7 @@ pub fn triangulate_maxmin(points: &[Point]) -> Result<Immersion, NotSelfOverlapp
 ///
 /// ```
 /// use immerse::geom::Point;
-/// use immerse::quality::{triangulate_with, Quality};
+/// use immerse::{triangulate_with, Quality};
 /// let hex: Vec<Point> = (0..6)
 ///     .map(|i| {
 ///         let a = i as f64 * std::f64::consts::TAU / 6.0;
@@ -111,7 +122,7 @@ pub fn triangulate_maxmin(points: &[Point]) -> Result<Immersion, NotSelfOverlapp
 /// for q in Quality::ALL {
 ///     assert!(triangulate_with(&hex, q)?.is_immersion());
 /// }
-/// # Ok::<(), immerse::immersion::NotSelfOverlapping>(())
+/// # Ok::<(), immerse::NotSelfOverlapping>(())
 /// ```
 ///
 /// # Errors
@@ -169,7 +180,7 @@ pub fn triangulate_with_progress(
 
 /// Most points the max–min-angle DP accepts: it keeps about 36n² bytes
 /// of tables (576 MB at this limit).
-pub const MAX_MAXMIN_POINTS: usize = 4_000;
+pub(crate) const MAX_MAXMIN_POINTS: usize = 4_000;
 
 /// Most candidate triangles `(i, k, j)` (apexes of feasible sub-polygons,
 /// counted from the decision table before the max–min DP starts) that the
@@ -177,12 +188,7 @@ pub const MAX_MAXMIN_POINTS: usize = 4_000;
 /// where nearly every candidate is measured. A spiral strip of 4,000
 /// points needs far fewer; a nearly convex blob of 2,000 fits, one of
 /// 3,000 does not.
-pub const MAX_MAXMIN_CANDIDATES: u64 = 1_500_000_000;
-
-/// Working memory of [`triangulate_maxmin`] for `n` points, in bytes.
-pub fn maxmin_memory_bytes(n: usize) -> usize {
-    optimal::memory_bytes(n)
-}
+pub(crate) const MAX_MAXMIN_CANDIDATES: u64 = 1_500_000_000;
 
 #[cfg(test)]
 mod tests {

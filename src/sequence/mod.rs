@@ -17,14 +17,14 @@
 //!    key `j + 1` is the one that vertex `i` of key `j` moves to), so a
 //!    vertex keeps its identity through the whole sequence.
 //!
-//! [`Sequence::schedule`] places the frames (module [`timing`]): by vertex
+//! [`Sequence::schedule`] places the frames (module `timing`): by vertex
 //! travel across the whole sequence, so the speed is continuous at a key
 //! unless the key holds, a segment's easing stops there, or a time or
 //! duration fixes it; [`Sequence::frames`] makes them, each checked
 //! exactly; [`key_speeds`] measures the speed on both sides of each key.
 
 mod align;
-pub mod timing;
+mod timing;
 
 pub use timing::{
     Ease, KeySpeed, KeyTiming, Sample, Schedule, Timing, key_speeds, schedule_lengths,
@@ -480,7 +480,7 @@ impl Sequence {
         }
     }
 
-    /// Places the frames of the whole sequence (see [`timing`]).
+    /// Places the frames of the whole sequence (module docs).
     ///
     /// # Errors
     ///

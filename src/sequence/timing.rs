@@ -33,14 +33,14 @@ pub(crate) const STOP_SLOPE: f64 = 0.05;
 
 /// Seconds per segment of a run of free segments whose end no time,
 /// duration or total fixes.
-pub const DEFAULT_SECONDS_PER_SEGMENT: f64 = 2.0;
+pub(crate) const DEFAULT_SECONDS_PER_SEGMENT: f64 = 2.0;
 
 /// The frame step, as a share of a segment's pace, over which its speed
 /// at a key is first measured (see [`crate::morph::Tween::end_rates`]).
 pub(crate) const RATE_WINDOW: f64 = 0.02;
 
 /// Most frames a sequence may have.
-pub const MAX_FRAMES: usize = 100_000;
+pub(crate) const MAX_FRAMES: usize = 100_000;
 
 /// An easing function x ↦ y on [0, 1] with y(0) = 0 and y(1) = 1: the
 /// timing of one segment. The library has no easing curves of its own
@@ -58,7 +58,7 @@ impl Ease {
     }
 
     /// The eased value of `x` ∈ [0, 1].
-    pub fn apply(&self, x: f64) -> f64 {
+    pub(crate) fn apply(&self, x: f64) -> f64 {
         match &self.0 {
             None => x,
             Some(f) => f(x),
@@ -115,7 +115,7 @@ pub struct Timing {
     /// Frames per second (above 0, at most 1000).
     pub fps: f64,
     /// Frames in all, holds included; `None` lets times, durations and
-    /// [`DEFAULT_SECONDS_PER_SEGMENT`] decide.
+    /// the default of 2 s per segment decide.
     pub frames: Option<usize>,
     /// One per key.
     pub keys: Vec<KeyTiming>,

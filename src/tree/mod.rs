@@ -41,7 +41,7 @@ pub enum TreeError {
 
 /// The dual tree of a triangulated n-gon.
 #[derive(Clone, Debug)]
-pub struct DualTree {
+pub(crate) struct DualTree {
     graph: UnGraph<u32, [u32; 2]>,
     triangles: Vec<[u32; 3]>,
     n: usize,
@@ -59,7 +59,7 @@ pub enum RootChoice {
 /// A dual tree rooted at one triangle: breadth-first order, parents and
 /// base edges.
 #[derive(Clone, Debug)]
-pub struct Rooted {
+pub(crate) struct Rooted {
     /// The root triangle.
     pub root: usize,
     /// Triangles in breadth-first order from the root (parents first).
@@ -82,7 +82,7 @@ impl DualTree {
     ///
     /// [`TreeError`] when the count is wrong or the dual graph is not a
     /// tree.
-    pub fn new(n: usize, triangles: &[[u32; 3]]) -> Result<DualTree, TreeError> {
+    pub(crate) fn new(n: usize, triangles: &[[u32; 3]]) -> Result<DualTree, TreeError> {
         if n < 3 || triangles.len() != n - 2 {
             return Err(TreeError::Count {
                 n,
@@ -140,22 +140,22 @@ impl DualTree {
     }
 
     /// Number of polygon vertices.
-    pub fn vertex_count(&self) -> usize {
+    pub(crate) fn vertex_count(&self) -> usize {
         self.n
     }
 
     /// The triangles (nodes of the tree).
-    pub fn triangles(&self) -> &[[u32; 3]] {
+    pub(crate) fn triangles(&self) -> &[[u32; 3]] {
         &self.triangles
     }
 
     /// Number of neighbours of triangle `t` (1 leaf, 2 path, 3 internal).
-    pub fn degree(&self, t: usize) -> usize {
+    pub(crate) fn degree(&self, t: usize) -> usize {
         self.graph.neighbors(NodeIndex::new(t)).count()
     }
 
     /// Neighbouring triangles of `t` with the shared diagonal.
-    pub fn neighbours(&self, t: usize) -> Vec<(usize, [u32; 2])> {
+    pub(crate) fn neighbours(&self, t: usize) -> Vec<(usize, [u32; 2])> {
         self.neighbour_iter(t).collect()
     }
 
@@ -170,13 +170,6 @@ impl DualTree {
             };
             (other, *e.weight())
         })
-    }
-
-    /// Leaf triangles (one neighbour; with a single triangle, that one).
-    pub fn leaves(&self) -> Vec<usize> {
-        (0..self.triangles.len())
-            .filter(|&t| self.degree(t) <= 1)
-            .collect()
     }
 
     /// Hop distances from `from` to every triangle.
@@ -197,7 +190,7 @@ impl DualTree {
 
     /// The centre of the tree: the middle of a longest path (ties to the
     /// smaller index).
-    pub fn centre(&self) -> usize {
+    pub(crate) fn centre(&self) -> usize {
         let d0 = self.distances(0);
         let a = argmax(&d0);
         let da = self.distances(a);
@@ -211,7 +204,7 @@ impl DualTree {
     }
 
     /// Roots the tree at triangle `root`.
-    pub fn rooted(&self, root: usize) -> Rooted {
+    pub(crate) fn rooted(&self, root: usize) -> Rooted {
         let m = self.triangles.len();
         let mut parent = vec![None; m];
         let mut seen = vec![false; m];
@@ -256,7 +249,7 @@ impl DualTree {
     /// The spine and pivot (Mukherjee & Gopi §6.1). `points` (the curve) break
     /// the choice between the two spine ends: the end triangle with the larger
     /// area becomes the pivot triangle.
-    pub fn spine(&self, points: &[Point]) -> Spine {
+    pub(crate) fn spine(&self, points: &[Point]) -> Spine {
         spine::spine(self, points)
     }
 }
@@ -277,7 +270,7 @@ fn argmax(v: &[usize]) -> usize {
 /// proportional to the curve's cumulative edge length (the disk image of
 /// the triangulation) and take the triangle whose centroid is closest to
 /// the centre.
-pub fn root_triangle(tree: &DualTree, points: &[Point], choice: RootChoice) -> usize {
+pub(crate) fn root_triangle(tree: &DualTree, points: &[Point], choice: RootChoice) -> usize {
     match choice {
         RootChoice::Disk => {
             let disk = disk_positions(points);
@@ -354,7 +347,8 @@ mod tests {
     #[test]
     fn fan_is_a_path() {
         let t = DualTree::new(6, &fan(6)).unwrap();
-        assert_eq!(t.leaves(), vec![0, 3]);
+        let leaves: Vec<usize> = (0..4).filter(|&i| t.degree(i) <= 1).collect();
+        assert_eq!(leaves, vec![0, 3]);
         assert_eq!(
             (0..4).map(|i| t.degree(i)).collect::<Vec<_>>(),
             vec![1, 2, 2, 1]

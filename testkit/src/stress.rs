@@ -13,20 +13,20 @@
 //! Every generated curve goes through the same reading path as a user's
 //! file: its points are written as JSON and read back with
 //! [`Curve::from_json_str`] (range checks, duplicate removal, orientation),
-//! and it is kept only when [`immerse::immersion::triangulate`] says it is
+//! and it is kept only when [`immerse::triangulate`] says it is
 //! self-overlapping. Outputs that are not are counted as discards.
 
 use crate::Rng;
 use crate::shapes::bounds;
 use immerse::Curve;
+use immerse::Quality;
 use immerse::geom::Point;
 use immerse::geom::polygon::triangle_angles;
 use immerse::geom::{Orientation, orient};
-use immerse::immersion::triangulate;
 use immerse::morph::{
     Correspondence, Counts, CurveMorphOptions, Intermediate, MorphReport, morph_curves,
 };
-use immerse::quality::Quality;
+use immerse::triangulate;
 use std::f64::consts::{PI, TAU};
 use std::fmt::Write as _;
 

@@ -21,7 +21,7 @@ use immerse::Point;
 use immerse::certify::{
     Defect, Key, Player, certify_keys, certify_segment, certify_span, valid_at,
 };
-use immerse::immersion::{check, triangulate};
+use immerse::{check, triangulate};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use proptest::prelude::*;

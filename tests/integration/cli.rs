@@ -285,11 +285,7 @@ fn morph_writes_verified_json_frames() {
             .collect();
         let tris: Vec<[u32; 3]> = serde_json::from_value(f["triangles"].clone()).unwrap();
         assert_eq!(pts.len(), n);
-        assert!(
-            immerse::immersion::check(&pts, &tris).is_ok(),
-            "t = {}",
-            f["t"]
-        );
+        assert!(immerse::check(&pts, &tris).is_ok(), "t = {}", f["t"]);
     }
     // The motion measures, recomputed here from the frames written: the
     // mean path over the least mean end-to-end distance (any cyclic
@@ -478,7 +474,7 @@ fn mesh_morph_check_linear_accepts_a_valid_linear_morph() {
 #[test]
 fn curves_too_large_for_the_dp_are_refused_with_exit_2() {
     let dir = tempfile::tempdir().unwrap();
-    let n = immerse::immersion::MAX_DP_POINTS + 1;
+    let n = 20_001;
     write_polygon(&dir.path().join("big.json"), n);
     let out = immerse_in(dir.path(), &["check", "big.json"]);
     assert_eq!(out.status.code(), Some(2));
@@ -488,7 +484,7 @@ fn curves_too_large_for_the_dp_are_refused_with_exit_2() {
         stderr(&out)
     );
     // The max–min DP has its own, lower limit.
-    let m = immerse::quality::MAX_MAXMIN_POINTS + 1;
+    let m = 4_001;
     write_polygon(&dir.path().join("mid.json"), m);
     let out = immerse_in(
         dir.path(),
@@ -573,7 +569,7 @@ fn triangulate_json_has_the_design_fields_and_a_valid_triangulation() {
             immerse::geom::polygon::turning_number(&pts),
             immerse::geom::polygon::Turning::Number(1)
         );
-        assert!(immerse::immersion::check(&pts, &tris).is_ok(), "{quality}");
+        assert!(immerse::check(&pts, &tris).is_ok(), "{quality}");
         // The spine runs between two leaves; the pivot vertex is a corner
         // of its first triangle; the root is a triangle.
         let spine: Vec<usize> = serde_json::from_value(v["spine"].clone()).unwrap();

@@ -165,7 +165,7 @@ fn the_curves_readme_table_is_reproduced() {
         match Curve::from_path(curve(file)) {
             Err(e) => assert_eq!(so, "invalid", "{file}: {e}"),
             Ok(c) => {
-                let verdict = immerse::immersion::triangulate(&c.points).is_ok();
+                let verdict = immerse::triangulate(&c.points).is_ok();
                 assert_eq!(so, if verdict { "yes" } else { "no" }, "{file}");
                 assert_eq!(simple, if c.is_simple() { "yes" } else { "no" }, "{file}");
                 assert_eq!(n, c.len().to_string(), "{file}");

@@ -420,7 +420,7 @@ fn drawing_tween_frames_are_immersions_with_growing_and_fading_shapes() {
             let t = f64::from(k) / 10.0;
             let f = tween.frame(t).unwrap();
             for s in &f.shapes {
-                immerse::immersion::check(&s.points, &s.triangles).unwrap();
+                immerse::check(&s.points, &s.triangles).unwrap();
                 let other = match s.role {
                     ShapeRole::Vanishing => 1.0 - t,
                     ShapeRole::Appearing => t,
@@ -505,7 +505,7 @@ fn morph_drawings_reports_matching_and_draws_every_shape_with_its_style() {
                 .map(|p| immerse::Point::new(p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
                 .collect();
             let triangles: Vec<[u32; 3]> = serde_json::from_value(s["triangles"].clone()).unwrap();
-            immerse::immersion::check(&points, &triangles).unwrap();
+            immerse::check(&points, &triangles).unwrap();
         }
     }
     // The first SVG frame paints the source's shapes in order with their
@@ -723,7 +723,7 @@ fn certify_all(outlines: &[Vec<Vec<immerse::Point>>], player: immerse::certify::
     let mut segments = 0;
     for (o, keys) in outlines.iter().enumerate() {
         for (i, w) in keys.windows(2).enumerate() {
-            let tris = immerse::immersion::triangulate(&w[0])
+            let tris = immerse::triangulate(&w[0])
                 .unwrap_or_else(|e| panic!("outline {o} key {i} is not self-overlapping: {e}"))
                 .triangles;
             let r = certify_motion(&w[0], &w[1], &[&tris], player, MotionOptions::default());
@@ -897,7 +897,7 @@ fn animate_takes_drawings_as_keys() {
                 .map(|p| immerse::Point::new(p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
                 .collect();
             let triangles: Vec<[u32; 3]> = serde_json::from_value(s["triangles"].clone()).unwrap();
-            immerse::immersion::check(&points, &triangles)
+            immerse::check(&points, &triangles)
                 .unwrap_or_else(|e| panic!("frame {i} shape {}: {e}", s["id"]));
         }
     }

@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 
 use immerse::geom::Point;
 use immerse::geom::polygon::{Turning, triangle_angles, turning_number};
-use immerse::immersion::{NotSelfOverlapping, check, is_valid_triangle, triangulate};
-use immerse::quality::{Quality, improve, triangulate_maxmin, triangulate_with};
+use immerse::{NotSelfOverlapping, check, is_valid_triangle, triangulate};
+use immerse::{Quality, improve, triangulate_maxmin, triangulate_with};
 use testkit::Rng;
 
 /// Every triangulation of the sub-polygon `i..=j` (chord `j–i`), as lists
@@ -315,8 +315,7 @@ fn delaunay_flips_equal_spade_cdt_on_simple_polygons() {
         // The DP's witness flipped to Delaunay equals spade's CDT (the
         // independent check of the flips), and so does the short cut that
         // triangulate_with takes for simple polygons.
-        let flipped =
-            immerse::quality::improve(immerse::triangulate(&pts).expect("a simple CCW polygon"));
+        let flipped = immerse::improve(immerse::triangulate(&pts).expect("a simple CCW polygon"));
         let cdt = spade_cdt(&pts);
         assert_eq!(flipped.triangles, cdt, "n={n}");
         let del = triangulate_with(&pts, Quality::Delaunay).expect("a simple CCW polygon");

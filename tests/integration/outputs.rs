@@ -608,7 +608,7 @@ fn gif_rates_above_50_fps_are_refused() {
 /// Two raw points were "a cusp at point 0".
 #[test]
 fn two_points_are_degenerate_not_a_cusp() {
-    use immerse::immersion::{NotSelfOverlapping, triangulate};
+    use immerse::{NotSelfOverlapping, triangulate};
     let two = [immerse::Point::new(0.0, 0.0), immerse::Point::new(1.0, 0.0)];
     let e = triangulate(&two).unwrap_err();
     assert_eq!(e, NotSelfOverlapping::Degenerate);

@@ -146,7 +146,7 @@ fn check_sequence(keys: &[Key], seq: &Sequence, frames: usize) -> Vec<f64> {
     let n = seq.vertex_count();
     for (i, f) in morph.frames.iter().enumerate() {
         assert_eq!(f.points.len(), n);
-        if let Err(e) = immerse::immersion::check(&f.points, &f.triangles) {
+        if let Err(e) = immerse::check(&f.points, &f.triangles) {
             panic!("frame {i}: {e}");
         }
     }

@@ -24,7 +24,7 @@ use std::f64::consts::TAU;
 
 /// Default margin ε (radians) kept below 2π in every vertex fan by the
 /// hybrid path (docs/design.md §6: about 0.05 rad).
-pub const DEFAULT_FAN_MARGIN: f64 = 0.05;
+pub(crate) const DEFAULT_FAN_MARGIN: f64 = 0.05;
 
 /// Angle floor (radians) of the straight path: a triangle of the guide
 /// thinner than min(this, half its smallest angle in the angle rule) is
@@ -35,7 +35,7 @@ pub(crate) const STRAIGHT_MIN_ANGLE: f64 = 0.5 * std::f64::consts::PI / 180.0;
 /// total area between these multiples of the smaller and the larger
 /// endpoint's: a linear interpolation may shrink a little in the middle, as
 /// animators expect, but never collapse.
-pub const STRAIGHT_AREA_RANGE: (f64, f64) = (0.81, 1.13);
+pub(crate) const STRAIGHT_AREA_RANGE: (f64, f64) = (0.81, 1.13);
 
 /// Precomputed data for morphing one compatible pair.
 #[derive(Clone, Debug)]
@@ -432,22 +432,17 @@ impl Compatible {
     }
 
     /// The shared triangulation.
-    pub fn triangles(&self) -> &[[u32; 3]] {
+    pub(crate) fn triangles(&self) -> &[[u32; 3]] {
         &self.triangles
     }
 
-    /// The root triangle of the propagation.
-    pub fn root_triangle(&self) -> usize {
-        self.rooted.root
-    }
-
     /// The source curve.
-    pub fn source(&self) -> &[Point] {
+    pub(crate) fn source(&self) -> &[Point] {
         &self.src
     }
 
     /// The target curve.
-    pub fn target(&self) -> &[Point] {
+    pub(crate) fn target(&self) -> &[Point] {
         &self.dst
     }
 

@@ -104,7 +104,7 @@ impl ThirdVertexPath {
     }
 
     /// True for the paths that guarantee an immersion for every t.
-    pub fn is_guaranteed(self) -> bool {
+    pub(crate) fn is_guaranteed(self) -> bool {
         matches!(
             self,
             ThirdVertexPath::Angle

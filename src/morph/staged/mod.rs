@@ -329,7 +329,7 @@ const MIN_KEY_STEP: f64 = 1.0 / (1u64 << 44) as f64;
 
 /// A staged path from one curve to another (in the first curve's labels).
 #[derive(Clone, Debug)]
-pub struct Staged {
+pub(crate) struct Staged {
     pub(crate) legs: Vec<Leg>,
     /// Where the other triangulation was reached: on the disk route the
     /// fraction of the way to the disk (0 when no flip was needed); on the
@@ -683,12 +683,6 @@ impl Staged {
         let disk = disk_for(x, area, centroid);
         let floor = 0.5 * min_angle(&disk, cur.triangles()).min(min_angle(&disk, goal));
         (Mode::Disk { disk, floor }, FlipOrder::sequence(cur, goal))
-    }
-
-    /// Total path length: the sum over the checked samples of the largest
-    /// vertex move.
-    pub fn path_length(&self) -> f64 {
-        self.legs.iter().map(Leg::length).sum()
     }
 
     /// The mean over vertices of the distance each travels along the whole

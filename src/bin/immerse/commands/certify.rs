@@ -4,8 +4,8 @@ use crate::Outcome;
 use crate::args::{CertifyArgs, PlayerArg};
 use crate::output;
 use anyhow::Context;
-use immerse::certify::animation::{Answer, SegmentOutcome};
-use immerse::certify::read::{Format, MAX_ANIMATION_BYTES};
+use immerse::certify::{Answer, SegmentOutcome};
+use immerse::certify::{Format, MAX_ANIMATION_BYTES};
 use immerse::certify::{MotionOptions, Player, certify_animation, read_animation};
 use std::io::Read;
 

@@ -5,7 +5,6 @@ use crate::args::CheckArgs;
 use crate::output;
 use immerse::Curve;
 use immerse::geom::polygon;
-use immerse::immersion;
 use serde::Serialize;
 
 /// The JSON report of `immerse check --json`.
@@ -60,7 +59,10 @@ pub(crate) fn run(args: &CheckArgs) -> anyhow::Result<Outcome> {
     let crossing = polygon::first_self_intersection(&curve.points);
     let json_on_stdout = args.json.as_deref().is_some_and(immerse_render::is_stdout);
     let bar = super::LateProgress::new("check", json_on_stdout);
-    let verdict = immersion::triangulate_progress(&curve.points, &mut |f| bar.update(f));
+    let verdict =
+        immerse::triangulate_with_progress(&curve.points, immerse::Quality::Any, &mut |f| {
+            bar.update(f)
+        });
     bar.finish();
     if let Err(e) = &verdict
         && !e.is_answer()

@@ -5,9 +5,8 @@ use crate::Outcome;
 use crate::args::TriangulateArgs;
 use crate::output;
 use anyhow::Context;
-use immerse::quality::triangulate_with_progress;
-use immerse::tree::{DualTree, RootChoice, root_triangle};
-use immerse::{Curve, Point, Quality};
+use immerse::triangulate_with_progress;
+use immerse::{Curve, Point, Quality, RootChoice};
 use immerse_render as render;
 use serde::Serialize;
 
@@ -56,10 +55,9 @@ pub(crate) fn run(args: &TriangulateArgs) -> anyhow::Result<Outcome> {
             return Ok(Outcome::Negative);
         }
     };
-    let tree = DualTree::new(imm.points.len(), &imm.triangles)
-        .context("the triangulation's dual graph is not a tree; this is a bug in immerse")?;
-    let spine = tree.spine(&imm.points);
-    let root = root_triangle(&tree, &imm.points, RootChoice::Disk);
+    let not_a_tree = "the triangulation's dual graph is not a tree; this is a bug in immerse";
+    let spine = imm.spine().context(not_a_tree)?;
+    let root = imm.root_triangle(RootChoice::Disk).context(not_a_tree)?;
     if let Some(path) = &args.output {
         draw(args, path, &imm.points, &imm.triangles, &spine, root)?;
     }
@@ -93,7 +91,7 @@ fn draw(
     path: &std::path::Path,
     points: &[Point],
     triangles: &[[u32; 3]],
-    spine: &immerse::tree::Spine,
+    spine: &immerse::Spine,
     _root: usize,
 ) -> anyhow::Result<()> {
     let mut frame = render::Frame::from_triangles(plain_points(points), triangles.to_vec());

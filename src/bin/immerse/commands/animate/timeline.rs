@@ -4,7 +4,7 @@
 //! (counting from 1) and the field or hint, on one line.
 
 use immerse::curve::SvgShapes;
-use immerse::input::ReadError;
+use immerse_base::input::ReadError;
 use immerse_render as render;
 use serde_json::{Map, Value};
 use std::path::{Path, PathBuf};
@@ -84,17 +84,18 @@ pub(crate) fn parse_svg_keys(s: &str) -> Option<SvgShapes> {
 /// caller adds it).
 pub(crate) fn read(path: &Path) -> anyhow::Result<Timeline> {
     // Read through the cap: a device, FIFO or pipe stops at the limit.
-    let bytes = immerse::input::read_capped(path, MAX_TIMELINE_BYTES).map_err(|e| match e {
-        ReadError::IsDirectory => anyhow::anyhow!(
-            "{} is a folder, not a timeline file; name a .json file",
-            path.display()
-        ),
-        ReadError::Io(e) => anyhow::anyhow!(
-            "cannot read {} (check the path and permissions): {e}",
-            path.display()
-        ),
-        e => anyhow::anyhow!("{}: {e}", path.display()),
-    })?;
+    let bytes =
+        immerse_base::input::read_capped(path, MAX_TIMELINE_BYTES).map_err(|e| match e {
+            ReadError::IsDirectory => anyhow::anyhow!(
+                "{} is a folder, not a timeline file; name a .json file",
+                path.display()
+            ),
+            ReadError::Io(e) => anyhow::anyhow!(
+                "cannot read {} (check the path and permissions): {e}",
+                path.display()
+            ),
+            e => anyhow::anyhow!("{}: {e}", path.display()),
+        })?;
     let dir = path.parent().unwrap_or(Path::new(""));
     parse(&bytes, dir).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
 }

@@ -501,3 +501,27 @@ fn a_morph_meets_its_ends_continuously_through_triangles_thin_to_rounding() {
         }
     }
 }
+
+/// The straight path through triangles whose angle rule is thin: the
+/// stress generators' collinear runs and short edges (stress pairs 77,
+/// 341 and 1014 of seed 0x2026b, where the defaults take `straight`). Its
+/// floor step once blended such a triangle toward the rule's angles by an
+/// amount decided by rounding, so its third vertex switched between two
+/// places along its base from frame to frame; now the largest step
+/// shrinks with the frame count (docs/design.md §7c).
+#[test]
+fn the_straight_path_is_continuous_where_the_angle_rule_is_thin() {
+    for index in [77, 341, 1014] {
+        let p = testkit::stress::pair(0x2026b, index);
+        let tween = Tween::new(&p.source, &p.target, &CurveMorphOptions::DEFAULT)
+            .unwrap_or_else(|e| panic!("stress pair {index}: {e}"));
+        let mut steps = [0.0; 3];
+        for (i, count) in [40, 320, 2560].into_iter().enumerate() {
+            let morph = tween.morph(&fractions(count)).unwrap();
+            steps[i] = immerse::frames::view_measures(&morph.frames)
+                .expect("a constant vertex count")
+                .max_step;
+        }
+        assert_continuous(&format!("stress pair {index}"), steps);
+    }
+}

@@ -31,6 +31,12 @@ pub(crate) const DEFAULT_FAN_MARGIN: f64 = 0.05;
 /// lifted toward the angle rule (about 0.5°).
 pub(crate) const STRAIGHT_MIN_ANGLE: f64 = 0.5 * std::f64::consts::PI / 180.0;
 
+/// The smallest angle of the angle rule (radians) below which the
+/// straight path's floor step takes the nearest point of the floor set
+/// rather than the rule's angles, and above which it takes the rule's
+/// angles; between the two it blends them (0.25° and 1°).
+const RULE_THIN: (f64, f64) = (0.25 * 2.0 * STRAIGHT_MIN_ANGLE, 2.0 * STRAIGHT_MIN_ANGLE);
+
 /// The fitted paths (`straight`, `polar`, `angle`, `hybrid`) keep their
 /// total area between these multiples of the smaller and the larger
 /// endpoint's: a linear interpolation may shrink a little in the middle, as
@@ -714,11 +720,33 @@ impl Compatible {
                 let mu = ((floor - sigma) / (2.0 * floor)).clamp(0.0, 1.0);
                 if mu <= 0.0 {
                     kept[i] = true;
-                    measured
-                } else if mu >= 1.0 {
-                    c
+                    return measured;
+                }
+                let toward_rule = if mu >= 1.0 { c } else { lerp3(measured, c, mu) };
+                // Where the angle rule itself is thin (its smallest angle
+                // below the full floor), its angles decide a thin
+                // triangle's third vertex along its base by their ratio,
+                // which moves within a span of t of the order of the
+                // angle, and the guide's measured angles there are
+                // rounding: the nearest point of the floor set keeps the
+                // third vertex where the guide has it along the base
+                // instead (continuous in the guide, blind to that
+                // rounding). The two are blended by how thin the rule is.
+                let beta =
+                    ((2.0 * floor - RULE_THIN.0) / (RULE_THIN.1 - RULE_THIN.0)).clamp(0.0, 1.0);
+                if beta >= 1.0 {
+                    return toward_rule;
+                }
+                let (e, f) = (py - px, pw - px);
+                let z = Point::new(e.dot(f), e.perp_dot(f)) / e.length_squared();
+                if !z.is_finite() {
+                    return toward_rule;
+                }
+                let projected = factor_angles(project_to_floor(z, floor));
+                if beta <= 0.0 {
+                    projected
                 } else {
-                    lerp3(measured, c, mu)
+                    lerp3(projected, toward_rule, beta)
                 }
             })
             .collect();

@@ -89,17 +89,32 @@ use crate::geom::Point;
 use crate::immersion::{ImmersionDefect, check, check_structure};
 
 /// The arithmetic a player interpolates with; sets the certificate's
-/// margin (module docs).
+/// margin (module docs). With the `cli` feature it is the command line's
+/// `--player` (each `value` attribute: the help text the command line
+/// shows).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Player {
     /// Exact interpolation of the coordinates as given: no margin.
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "The coordinates as written, interpolated exactly: no margin")
+    )]
     Exact,
     /// Interpolation in `f64` (browsers' SMIL and CSS, most desktop
     /// players).
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "Interpolation in double precision (browsers' SVG and CSS)")
+    )]
     F64,
     /// Interpolation in `f32` (native Lottie players, GPUs, game engines),
     /// coordinates read into `f32` first.
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "Interpolation in single precision (native Lottie players, GPUs)")
+    )]
     F32,
 }
 

@@ -5,19 +5,31 @@ use super::{Drawing, Shape};
 use crate::geom::Point;
 use crate::geom::polygon::{area_centroid, signed_area};
 
-/// How shapes are paired.
+/// How shapes are paired. With the `cli` feature it is the command
+/// line's `--match` (each `value` attribute: the help text the command
+/// line shows).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum MatchMode {
     /// Shapes with the same non-empty id; the others appear or vanish.
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "The same id; shapes without a partner appear or vanish")
+    )]
     Id,
     /// The k-th shape with the k-th; the extra shapes of the longer
     /// drawing appear or vanish.
+    #[cfg_attr(feature = "cli", value(help = "The k-th shape with the k-th"))]
     Order,
     /// The assignment of least total cost (position, size, outline),
     /// where leaving a shape unmatched costs 1 (the cost of a shape's own
     /// size).
     #[default]
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "The least total cost of position, size and outline")
+    )]
     Auto,
 }
 

@@ -13,17 +13,28 @@ use crate::quality::{Quality, triangulate_with};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-/// How the two curves are brought to the same vertex count.
+/// How the two curves are brought to the same vertex count. With the
+/// `cli` feature it is the command line's `--counts` (each `value`
+/// attribute: the help text the command line shows).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Counts {
     /// Insert vertices on the longest edges of the curve with fewer
     /// vertices; original vertices stay exactly where they are.
     #[default]
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "Insert vertices on the longest edges; original vertices stay put")
+    )]
     Insert,
     /// Resample both curves evenly by arc length to the larger count
     /// (original vertices move onto the resampled positions). Where that
     /// would make a curve not self-overlapping, vertices are inserted
     /// instead and the report's fallbacks say so.
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "Resample both curves evenly by arc length")
+    )]
     Resample,
 }
 
@@ -203,14 +214,27 @@ pub fn equal_counts(a: &[Point], b: &[Point], counts: Counts) -> (Vec<Point>, Ve
     }
 }
 
-/// The intermediate that staged flips happen on the way to.
+/// The intermediate that staged flips happen on the way to. With the
+/// `cli` feature it is the command line's `--intermediate` (each `value`
+/// attribute: the help text the command line shows).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Intermediate {
     /// A valid shape that looks like the other curve (docs/design.md §7a):
     /// overlaps extend instead of unwinding.
     #[default]
+    #[cfg_attr(
+        feature = "cli",
+        value(
+            help = "A valid shape that looks like the other curve: overlaps extend instead of unwinding"
+        )
+    )]
     Target,
     /// A convex disk with the curve's area (Mukherjee & Gopi §6.2, docs/design.md §7).
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "A convex disk with the curve's area (Mukherjee & Gopi's route)")
+    )]
     Disk,
 }
 
@@ -227,30 +251,28 @@ impl Intermediate {
 /// How vertex `i` of the source is matched to a vertex of the target
 /// (after equalising counts): a cyclic shift chosen by one of these rules.
 /// Every rule is symmetric, so swapping the curves gives the opposite
-/// shift.
+/// shift. With the `cli` feature it is the command line's
+/// `--correspondence`, variants in its order (each `value` attribute: the
+/// help text the command line shows; the experimental rules are hidden,
+/// and refused by [`FromStr`](std::str::FromStr), unless built with the
+/// `experimental` feature).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Correspondence {
-    /// Vertex 0 matches vertex 0.
-    Identity,
-    /// Plan the morph with the outline rule, the min-flips rule and, when
-    /// the curves' corners match up, the corners rule, and keep the plan
-    /// whose vertices travel less (docs/design.md §7b: choose by what the
-    /// user sees, with a trial morph).
-    #[default]
-    Best,
-    /// The pivot vertices (Mukherjee & Gopi §6.1) of the two triangulations match.
-    Pivot,
-    /// The shift with the fewest crossings between the two triangulations
-    /// (fewest flips); ties go to the shapes' best geometric match.
-    MinFlips,
-    /// The shift that best matches the shapes themselves: least sum of
-    /// squared distances between matched vertices after normalising
-    /// position and size.
-    Shape,
     /// Match the outlines by arc length, up to a rotation, scale and
     /// translation: the shift that maps one outline best onto the other,
     /// with the inserted vertices placed where the other curve's vertices
     /// are (original vertices stay exact). What the user sees corresponds.
+    #[cfg_attr(
+        feature = "cli",
+        value(
+            help = "Match the outlines by arc length up to a rotation and scale; inserted vertices go where the other curve's are"
+        )
+    )]
+    #[cfg_attr(
+        all(feature = "cli", not(feature = "experimental")),
+        value(hide = true)
+    )]
     Outline,
     /// As [`Correspondence::Outline`], with the corners of the two curves
     /// matched in order and the arc length between them matched piece by
@@ -258,7 +280,61 @@ pub enum Correspondence {
     /// corners (turns of 60° or more) do not match up, rounded caps (a
     /// stretch of at most 3% of the perimeter turning by 160° or more)
     /// are matched instead; the outline rule when neither matches.
+    #[cfg_attr(
+        feature = "cli",
+        value(
+            help = "As outline, with the curves' corners (turns of 60° or more, else rounded caps: 160° within 3% of the perimeter) matched in order and the arc between them piece by piece"
+        )
+    )]
     Corners,
+    /// The shift with the fewest crossings between the two triangulations
+    /// (fewest flips); ties go to the shapes' best geometric match.
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "The cyclic shift with the fewest edge flips between the triangulations")
+    )]
+    MinFlips,
+    /// The pivot vertices (Mukherjee & Gopi §6.1) of the two triangulations match.
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "Match the pivot vertices of the two triangulations (Mukherjee & Gopi §6.1)")
+    )]
+    #[cfg_attr(
+        all(feature = "cli", not(feature = "experimental")),
+        value(hide = true)
+    )]
+    Pivot,
+    /// The shift that best matches the shapes themselves: least sum of
+    /// squared distances between matched vertices after normalising
+    /// position and size.
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "The cyclic shift that best matches the shapes themselves")
+    )]
+    #[cfg_attr(
+        all(feature = "cli", not(feature = "experimental")),
+        value(hide = true)
+    )]
+    Shape,
+    /// Vertex 0 matches vertex 0.
+    #[cfg_attr(feature = "cli", value(help = "Vertex 0 matches vertex 0"))]
+    #[cfg_attr(
+        all(feature = "cli", not(feature = "experimental")),
+        value(hide = true)
+    )]
+    Identity,
+    /// Plan the morph with the outline rule, the min-flips rule and, when
+    /// the curves' corners match up, the corners rule, and keep the plan
+    /// whose vertices travel less (docs/design.md §7b: choose by what the
+    /// user sees, with a trial morph).
+    #[default]
+    #[cfg_attr(
+        feature = "cli",
+        value(
+            help = "Plan with the outline, min-flips and (when the corners match up) corners rules; keep the one whose vertices travel less"
+        )
+    )]
+    Best,
 }
 
 impl Correspondence {

@@ -24,21 +24,33 @@
 
 use immerse_base::geom::{Orientation, Point, orient};
 
-/// Which barycentric coordinates represent an interior vertex.
+/// Which barycentric coordinates represent an interior vertex. With the
+/// `cli` feature it is the command line's `--weights`, variants in its
+/// order (each `value` attribute: the help text the command line shows).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Weights {
-    /// Floater's averaged weights (Floater & Gotsman eq. 5.5).
-    Floater,
     /// Mean value coordinates (Surazhsky & Gotsman *Intrinsic Morphing* eq. 2).
     #[default]
+    #[cfg_attr(feature = "cli", value(help = "Mean value coordinates (Floater 2003)"))]
     MeanValue,
+    /// Floater's averaged weights (Floater & Gotsman eq. 5.5).
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "Floater's averaged shape-preserving weights")
+    )]
+    Floater,
     /// Uniform (Tutte) weights `1/d`; they do not reproduce the vertex.
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "Uniform (Tutte) weights; end frames become Tutte drawings")
+    )]
     Uniform,
 }
 
 impl Weights {
-    /// All choices.
-    pub const ALL: [Weights; 3] = [Weights::Floater, Weights::MeanValue, Weights::Uniform];
+    /// All choices, in CLI order.
+    pub const ALL: [Weights; 3] = [Weights::MeanValue, Weights::Floater, Weights::Uniform];
 
     /// The name used on the command line: `floater`, `mean-value`, `uniform`.
     pub fn as_str(self) -> &'static str {

@@ -87,21 +87,44 @@ use crate::tiling::validate::{Topology, faces_strictly_convex, validate_topology
 use crate::tiling::{Tiling, TilingError};
 use immerse_base::geom::{Orientation, Point, orient};
 
-/// How the vertices travel; the names are the CLI values.
+/// How the vertices travel; the names are the CLI values. With the `cli`
+/// feature it is the command line's `--method` (each `value` attribute:
+/// the help text the command line shows).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Method {
     /// Straight lines at constant speed (`linear`).
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "Straight-line vertex paths (may fold; reported per frame)")
+    )]
     Linear,
     /// Interpolated convex combination weights (`convex`, Floater & Gotsman).
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "Interpolate barycentric weights and solve (Floater–Gotsman)")
+    )]
     Convex,
     /// Interpolated angles and lengths in mean value coordinates
     /// (`intrinsic`, Surazhsky & Gotsman *Intrinsic Morphing*).
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "Interpolate angles and edge lengths in the mean value formula")
+    )]
     Intrinsic,
     /// Neighbourhood matrices raised to a power (`power`, Surazhsky & Gotsman
     /// *Controllable Morphing* §3.3).
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "Neighbourhood matrices to the largest valid power (closer to linear)")
+    )]
     Power,
     /// Star by star, linear where valid (`local`, Surazhsky & Gotsman
     /// *Controllable Morphing* §4.1).
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "Linear where each star allows it, polar averaging elsewhere")
+    )]
     Local,
 }
 

@@ -8,38 +8,14 @@ use crate::geom::Point;
 use std::f64::consts::PI;
 
 /// How each triangle's third vertex travels from its source to its target
-/// position relative to its base.
+/// position relative to its base. With the `cli` feature it is the
+/// command line's `--path`, variants in its order (each `value`
+/// attribute: the help text the command line shows; the experimental
+/// paths are hidden, and refused by [`FromStr`](std::str::FromStr),
+/// unless built with the `experimental` feature).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum ThirdVertexPath {
-    /// Interpolate base-relative coordinates linearly. Not guaranteed: may
-    /// fold the shape on strong deformations (detected, then `hybrid` is
-    /// used instead).
-    Linear,
-    /// Mukherjee & Gopi's rotate-and-slide path (their Fig. 7): keep the
-    /// length of a propagation edge monotone. Not guaranteed either
-    /// (detected, then `hybrid` is used instead).
-    RotateSlide,
-    /// Interpolate every triangle's angles linearly and lay the triangles
-    /// out from them: an immersion for every t, but it distorts more.
-    Angle,
-    /// Rotate-slide angles blended toward the angle rule just enough to
-    /// keep every vertex fan below 2π: an immersion for every t with little
-    /// distortion.
-    Hybrid,
-    /// As straight as validity allows: the end shapes interpolated
-    /// linearly (in a frame turning by their best-fit rotation), projected
-    /// into the valid angle set only where that interpolation is invalid.
-    /// An immersion for every t; where the linear morph is valid, it is the
-    /// linear morph.
-    Straight,
-    /// As straight as validity allows along arcs: like `straight`, but the
-    /// end shapes are interpolated in polar coordinates about their vertex
-    /// means (each vertex's angle, unwound along the curve, and its
-    /// distance), so a spiral winds up along its own turns instead of
-    /// cutting across them. An immersion for every t. The default path
-    /// tries it on the last leg where `hybrid` travels less than
-    /// `straight`, and keeps the one whose vertices travel least.
-    Polar,
     /// As rigid as validity allows: every triangle's rotation and stretch
     /// interpolated separately (rotations unwound along the dual tree) and
     /// the positions fitted to them by least squares (Alexa, Cohen-Or &
@@ -48,7 +24,86 @@ pub enum ThirdVertexPath {
     /// shrinking, spirals wind along their turns, and every t gives an
     /// immersion. The default.
     #[default]
+    #[cfg_attr(
+        feature = "cli",
+        value(
+            help = "As rigid as validity allows: each triangle's rotation and stretch interpolated, positions by least squares; parts turn instead of shrinking, spirals wind (guaranteed)"
+        )
+    )]
     Rigid,
+    /// Rotate-slide angles blended toward the angle rule just enough to
+    /// keep every vertex fan below 2π: an immersion for every t with little
+    /// distortion.
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "Rotate-slide angles blended just enough to stay an immersion (guaranteed)")
+    )]
+    Hybrid,
+    /// As straight as validity allows: the end shapes interpolated
+    /// linearly (in a frame turning by their best-fit rotation), projected
+    /// into the valid angle set only where that interpolation is invalid.
+    /// An immersion for every t; where the linear morph is valid, it is the
+    /// linear morph.
+    #[cfg_attr(
+        feature = "cli",
+        value(
+            help = "As straight as validity allows: linear where the linear morph is valid; on the last leg it competes with hybrid and polar (guaranteed)"
+        )
+    )]
+    Straight,
+    /// As straight as validity allows along arcs: like `straight`, but the
+    /// end shapes are interpolated in polar coordinates about their vertex
+    /// means (each vertex's angle, unwound along the curve, and its
+    /// distance), so a spiral winds up along its own turns instead of
+    /// cutting across them. An immersion for every t. The default path
+    /// tries it on the last leg where `hybrid` travels less than
+    /// `straight`, and keeps the one whose vertices travel least.
+    #[cfg_attr(
+        feature = "cli",
+        value(
+            help = "As straight as validity allows along arcs about the centre: spirals wind (guaranteed)"
+        )
+    )]
+    #[cfg_attr(
+        all(feature = "cli", not(feature = "experimental")),
+        value(hide = true)
+    )]
+    Polar,
+    /// Interpolate every triangle's angles linearly and lay the triangles
+    /// out from them: an immersion for every t, but it distorts more.
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "Linear interpolation of triangle angles (guaranteed, more distortion)")
+    )]
+    #[cfg_attr(
+        all(feature = "cli", not(feature = "experimental")),
+        value(hide = true)
+    )]
+    Angle,
+    /// Mukherjee & Gopi's rotate-and-slide path (their Fig. 7): keep the
+    /// length of a propagation edge monotone. Not guaranteed: may fold
+    /// the shape (detected, then `hybrid` is used instead).
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "The paper's rotate-and-slide path (checked; falls back to hybrid)")
+    )]
+    #[cfg_attr(
+        all(feature = "cli", not(feature = "experimental")),
+        value(hide = true)
+    )]
+    RotateSlide,
+    /// Interpolate base-relative coordinates linearly. Not guaranteed
+    /// either: may fold the shape on strong deformations (detected, then
+    /// `hybrid` is used instead).
+    #[cfg_attr(
+        feature = "cli",
+        value(help = "Linear base-relative coordinates (checked; falls back to hybrid)")
+    )]
+    #[cfg_attr(
+        all(feature = "cli", not(feature = "experimental")),
+        value(hide = true)
+    )]
+    Linear,
 }
 
 impl ThirdVertexPath {

@@ -579,11 +579,6 @@ impl Sequence {
             }
             frames.push(f);
         }
-        Ok(Morph {
-            paths,
-            fallback: !fallbacks.is_empty(),
-            fallbacks,
-            frames,
-        })
+        Ok(Morph::new(paths, fallbacks, frames))
     }
 }

@@ -789,12 +789,7 @@ pub(super) fn compute(
         f.t = u;
         frames.push(f);
     }
-    let morph = Morph {
-        paths,
-        fallback: !fallbacks.is_empty(),
-        fallbacks,
-        frames,
-    };
+    let morph = Morph::new(paths, fallbacks, frames);
     Ok((morph, seq.keyframes()))
 }
 

@@ -159,16 +159,7 @@ pub fn detour(frames: &[Frame]) -> f64 {
     if n == 0 || frames.iter().any(|f| f.points.len() != n) {
         return f64::NAN;
     }
-    let travelled: f64 = frames
-        .windows(2)
-        .map(|w| {
-            w[0].points
-                .iter()
-                .zip(&w[1].points)
-                .map(|(a, b)| (*a - *b).length())
-                .sum::<f64>()
-        })
-        .sum();
+    let travelled = travelled(frames);
     // The least sum over shifts. Shift 0 (the frames' own matching, most
     // often the least) first; then every shift on all cores, each summed
     // in vertex order without a remainder per term, and abandoned once
@@ -200,6 +191,21 @@ pub fn detour(frames: &[Frame]) -> f64 {
         return if travelled <= 0.0 { 1.0 } else { f64::INFINITY };
     }
     travelled / straight
+}
+
+/// The summed length of every vertex's path through the frames (frames
+/// of one vertex count).
+fn travelled(frames: &[Frame]) -> f64 {
+    frames
+        .windows(2)
+        .map(|w| {
+            w[0].points
+                .iter()
+                .zip(&w[1].points)
+                .map(|(a, b)| (*a - *b).length())
+                .sum::<f64>()
+        })
+        .sum()
 }
 
 /// The unwind of a frame sequence: the smallest total absolute turning of
@@ -426,12 +432,7 @@ mod tests {
     #[test]
     fn detour_equals_its_definition() {
         let mut state = 0x9e3779b97f4a7c15_u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = || testkit::rng::unit_from_bits(testkit::rng::xorshift64(&mut state));
         for case in 0..200 {
             let n = 1 + (next() * 40.0) as usize;
             let a: Vec<Point> = (0..n).map(|_| Point::new(next(), next())).collect();
@@ -449,16 +450,6 @@ mod tests {
                     triangles: Vec::new(),
                 })
                 .collect();
-            let travelled: f64 = frames
-                .windows(2)
-                .map(|w| {
-                    w[0].points
-                        .iter()
-                        .zip(&w[1].points)
-                        .map(|(p, q)| (*p - *q).length())
-                        .sum::<f64>()
-                })
-                .sum();
             let least = (0..n)
                 .map(|k| {
                     (0..n)
@@ -466,7 +457,7 @@ mod tests {
                         .sum::<f64>()
                 })
                 .fold(f64::INFINITY, f64::min);
-            assert_eq!(detour(&frames), travelled / least, "case {case}");
+            assert_eq!(detour(&frames), travelled(&frames) / least, "case {case}");
         }
     }
 

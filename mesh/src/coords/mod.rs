@@ -26,25 +26,22 @@ use immerse_base::geom::{Orientation, Point, orient};
 
 /// Which barycentric coordinates represent an interior vertex. With the
 /// `cli` feature it is the command line's `--weights`, variants in its
-/// order (each `value` attribute: the help text the command line shows).
+/// order (each variant's first doc paragraph is its help there).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Weights {
-    /// Mean value coordinates (Surazhsky & Gotsman *Intrinsic Morphing* eq. 2).
+    /// Mean value coordinates (Floater 2003).
+    ///
+    /// As in Surazhsky & Gotsman *Intrinsic Morphing* eq. 2.
     #[default]
-    #[cfg_attr(feature = "cli", value(help = "Mean value coordinates (Floater 2003)"))]
     MeanValue,
-    /// Floater's averaged weights (Floater & Gotsman eq. 5.5).
-    #[cfg_attr(
-        feature = "cli",
-        value(help = "Floater's averaged shape-preserving weights")
-    )]
+    /// Floater's averaged shape-preserving weights.
+    ///
+    /// Floater & Gotsman eq. 5.5.
     Floater,
-    /// Uniform (Tutte) weights `1/d`; they do not reproduce the vertex.
-    #[cfg_attr(
-        feature = "cli",
-        value(help = "Uniform (Tutte) weights; end frames become Tutte drawings")
-    )]
+    /// Uniform (Tutte) weights; end frames become Tutte drawings.
+    ///
+    /// `1/d`: they do not reproduce the vertex.
     Uniform,
 }
 

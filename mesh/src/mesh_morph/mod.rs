@@ -88,43 +88,32 @@ use crate::tiling::{Tiling, TilingError};
 use immerse_base::geom::{Orientation, Point, orient};
 
 /// How the vertices travel; the names are the CLI values. With the `cli`
-/// feature it is the command line's `--method` (each `value` attribute:
-/// the help text the command line shows).
+/// feature it is the command line's `--method` (each variant's first doc
+/// paragraph is its help there).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Method {
-    /// Straight lines at constant speed (`linear`).
-    #[cfg_attr(
-        feature = "cli",
-        value(help = "Straight-line vertex paths (may fold; reported per frame)")
-    )]
+    /// Straight-line vertex paths (may fold; reported per frame).
+    ///
+    /// At constant speed (`linear`).
     Linear,
-    /// Interpolated convex combination weights (`convex`, Floater & Gotsman).
-    #[cfg_attr(
-        feature = "cli",
-        value(help = "Interpolate barycentric weights and solve (Floater–Gotsman)")
-    )]
+    /// Interpolate barycentric weights and solve (Floater–Gotsman).
+    ///
+    /// Convex combination weights (`convex`, Floater & Gotsman).
     Convex,
-    /// Interpolated angles and lengths in mean value coordinates
-    /// (`intrinsic`, Surazhsky & Gotsman *Intrinsic Morphing*).
-    #[cfg_attr(
-        feature = "cli",
-        value(help = "Interpolate angles and edge lengths in the mean value formula")
-    )]
+    /// Interpolate angles and edge lengths in the mean value formula.
+    ///
+    /// Mean value coordinates (`intrinsic`, Surazhsky & Gotsman *Intrinsic
+    /// Morphing*).
     Intrinsic,
-    /// Neighbourhood matrices raised to a power (`power`, Surazhsky & Gotsman
-    /// *Controllable Morphing* §3.3).
-    #[cfg_attr(
-        feature = "cli",
-        value(help = "Neighbourhood matrices to the largest valid power (closer to linear)")
-    )]
+    /// Neighbourhood matrices to the largest valid power (closer to linear).
+    ///
+    /// `power`, Surazhsky & Gotsman *Controllable Morphing* §3.3.
     Power,
-    /// Star by star, linear where valid (`local`, Surazhsky & Gotsman
-    /// *Controllable Morphing* §4.1).
-    #[cfg_attr(
-        feature = "cli",
-        value(help = "Linear where each star allows it, polar averaging elsewhere")
-    )]
+    /// Linear where each star allows it, polar averaging elsewhere.
+    ///
+    /// Star by star (`local`, Surazhsky & Gotsman *Controllable Morphing*
+    /// §4.1).
     Local,
 }
 

@@ -3,31 +3,26 @@
 
 use crate::geom::Point;
 pub use crate::geom::polygon::total_absolute_turning;
+use crate::morph::output::Motion;
 pub(crate) use crate::morph::output::ser_points;
 pub use crate::morph::{Fallback, Frame, Morph};
 
 /// A morph in JSON, with the motion measures of its frames (defined here,
 /// beside the measures, so that the morph's types need nothing above them).
+/// The measures are computed on the first write and kept in the morph.
 impl serde::Serialize for Morph {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         use serde::ser::SerializeStruct;
-        #[derive(serde::Serialize)]
-        struct Motion {
-            detour: Option<f64>,
-            unwind: Option<f64>,
-        }
         let finite = |x: f64| x.is_finite().then_some(x);
+        let motion = self.motion.get_or_init(|| Motion {
+            detour: finite(detour(&self.frames)),
+            unwind: finite(unwind(&self.frames)),
+        });
         let mut m = s.serialize_struct("Morph", 5)?;
         m.serialize_field("path", &self.path_name())?;
         m.serialize_field("fallback", &self.fallback)?;
         m.serialize_field("fallbacks", &self.fallbacks)?;
-        m.serialize_field(
-            "motion",
-            &Motion {
-                detour: finite(detour(&self.frames)),
-                unwind: finite(unwind(&self.frames)),
-            },
-        )?;
+        m.serialize_field("motion", &motion)?;
         m.serialize_field("frames", &self.frames)?;
         m.end()
     }
@@ -164,16 +159,7 @@ pub fn detour(frames: &[Frame]) -> f64 {
     if n == 0 || frames.iter().any(|f| f.points.len() != n) {
         return f64::NAN;
     }
-    let travelled: f64 = frames
-        .windows(2)
-        .map(|w| {
-            w[0].points
-                .iter()
-                .zip(&w[1].points)
-                .map(|(a, b)| (*a - *b).length())
-                .sum::<f64>()
-        })
-        .sum();
+    let travelled = travelled(frames);
     // The least sum over shifts. Shift 0 (the frames' own matching, most
     // often the least) first; then every shift on all cores, each summed
     // in vertex order without a remainder per term, and abandoned once
@@ -205,6 +191,21 @@ pub fn detour(frames: &[Frame]) -> f64 {
         return if travelled <= 0.0 { 1.0 } else { f64::INFINITY };
     }
     travelled / straight
+}
+
+/// The summed length of every vertex's path through the frames (frames
+/// of one vertex count).
+fn travelled(frames: &[Frame]) -> f64 {
+    frames
+        .windows(2)
+        .map(|w| {
+            w[0].points
+                .iter()
+                .zip(&w[1].points)
+                .map(|(a, b)| (*a - *b).length())
+                .sum::<f64>()
+        })
+        .sum()
 }
 
 /// The unwind of a frame sequence: the smallest total absolute turning of
@@ -431,12 +432,7 @@ mod tests {
     #[test]
     fn detour_equals_its_definition() {
         let mut state = 0x9e3779b97f4a7c15_u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = || testkit::rng::unit_from_bits(testkit::rng::xorshift64(&mut state));
         for case in 0..200 {
             let n = 1 + (next() * 40.0) as usize;
             let a: Vec<Point> = (0..n).map(|_| Point::new(next(), next())).collect();
@@ -454,16 +450,6 @@ mod tests {
                     triangles: Vec::new(),
                 })
                 .collect();
-            let travelled: f64 = frames
-                .windows(2)
-                .map(|w| {
-                    w[0].points
-                        .iter()
-                        .zip(&w[1].points)
-                        .map(|(p, q)| (*p - *q).length())
-                        .sum::<f64>()
-                })
-                .sum();
             let least = (0..n)
                 .map(|k| {
                     (0..n)
@@ -471,8 +457,48 @@ mod tests {
                         .sum::<f64>()
                 })
                 .fold(f64::INFINITY, f64::min);
-            assert_eq!(detour(&frames), travelled / least, "case {case}");
+            assert_eq!(detour(&frames), travelled(&frames) / least, "case {case}");
         }
+    }
+
+    /// A morph's JSON carries the detour and unwind of its frames,
+    /// computed on the first write and kept: a second write gives the same
+    /// text without searching again (frames changed after the first write
+    /// do not change it), and the kept measures do not make two morphs
+    /// unequal.
+    #[test]
+    fn morph_json_keeps_its_motion_measures() {
+        let square = [(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0)];
+        let frames: Vec<Frame> = (0..5)
+            .map(|k| {
+                let t = k as f64 / 4.0;
+                let spin = Point::from_angle(t);
+                Frame {
+                    t,
+                    points: square
+                        .iter()
+                        .map(|&(x, y)| spin.rotate(Point::new(x, y)) * (1.0 + t))
+                        .collect(),
+                    triangles: vec![[0, 1, 2], [0, 2, 3]],
+                }
+            })
+            .collect();
+        let morph = Morph::new(Vec::new(), Vec::new(), frames.clone());
+        let unwritten = morph.clone();
+        let first = serde_json::to_value(&morph).unwrap();
+        assert_eq!(first["motion"]["detour"], detour(&frames));
+        assert_eq!(first["motion"]["unwind"], unwind(&frames));
+        assert!(detour(&frames) > 1.0, "the spin is a detour");
+        assert_eq!(morph, unwritten);
+        let mut moved = morph.clone();
+        moved.frames[2].points[0] += Point::new(5.0, 0.0);
+        assert_ne!(detour(&moved.frames), detour(&frames));
+        let again = serde_json::to_value(&moved).unwrap();
+        assert_eq!(again["motion"], first["motion"]);
+        assert_eq!(
+            serde_json::to_string(&morph).unwrap(),
+            serde_json::to_string(&unwritten).unwrap()
+        );
     }
 
     #[test]

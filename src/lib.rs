@@ -28,8 +28,10 @@
 //! ## Features
 //!
 //! - `cli` (default): the `immerse` command-line tool and its rendering,
-//!   progress and argument-parsing dependencies. Without it the library has
-//!   no rendering or CLI dependency.
+//!   progress and argument-parsing dependencies; the option enums
+//!   (`Quality`, `morph::ThirdVertexPath`, `morph::Correspondence`, ...)
+//!   derive `clap::ValueEnum`, so the command line parses them directly.
+//!   Without it the library has no rendering or CLI dependency.
 //!
 //! ## The front door
 //!

@@ -157,26 +157,26 @@ fn dot(ax: Fe, ay: Fe, bx: Fe, by: Fe) -> Fe {
     ax.mul(bx).add(ay.mul(by))
 }
 
+/// `form(u(s), w(s))` in the Bernstein basis, for a bilinear `form`
+/// ([`cross`] or [`dot`]) of two edges moving linearly in s.
+fn bern(u: &Edge, w: &Edge, form: fn(Fe, Fe, Fe, Fe) -> Fe) -> Bern {
+    Bern([
+        form(u.x0, u.y0, w.x0, w.y0),
+        form(u.x0, u.y0, w.x1, w.y1)
+            .add(form(u.x1, u.y1, w.x0, w.y0))
+            .half(),
+        form(u.x1, u.y1, w.x1, w.y1),
+    ])
+}
+
 /// `cross(u(s), w(s))` in the Bernstein basis.
 fn cross_bern(u: &Edge, w: &Edge) -> Bern {
-    Bern([
-        cross(u.x0, u.y0, w.x0, w.y0),
-        cross(u.x0, u.y0, w.x1, w.y1)
-            .add(cross(u.x1, u.y1, w.x0, w.y0))
-            .half(),
-        cross(u.x1, u.y1, w.x1, w.y1),
-    ])
+    bern(u, w, cross)
 }
 
 /// `dot(u(s), w(s))` in the Bernstein basis.
 fn dot_bern(u: &Edge, w: &Edge) -> Bern {
-    Bern([
-        dot(u.x0, u.y0, w.x0, w.y0),
-        dot(u.x0, u.y0, w.x1, w.y1)
-            .add(dot(u.x1, u.y1, w.x0, w.y0))
-            .half(),
-        dot(u.x1, u.y1, w.x1, w.y1),
-    ])
+    bern(u, w, dot)
 }
 
 /// Upper bound of the margin `L_u δ_w + L_w δ_u + 2 δ_u δ_w` (module docs

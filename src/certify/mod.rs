@@ -92,18 +92,22 @@ use rayon::prelude::*;
 use crate::geom::Point;
 use crate::immersion::{ImmersionDefect, check, check_structure};
 
-/// The arithmetic a player interpolates with; sets the certificate's
-/// margin (module docs).
+/// The arithmetic a player interpolates with; sets the certificate's margin
+/// (module docs). With the `cli` feature it is the command line's
+/// `--player` (each variant's first doc paragraph is its help there).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Player {
-    /// Exact interpolation of the coordinates as given: no margin.
+    /// The coordinates as written, interpolated exactly: no margin.
     Exact,
-    /// Interpolation in `f64` (browsers' SMIL and CSS, most desktop
-    /// players).
+    /// Interpolation in double precision (browsers' SVG and CSS).
+    ///
+    /// `f64`: browsers' SMIL and CSS, most desktop players.
     F64,
-    /// Interpolation in `f32` (native Lottie players, GPUs, game engines),
-    /// coordinates read into `f32` first.
+    /// Interpolation in single precision (native Lottie players, GPUs).
+    ///
+    /// `f32`, also in game engines; coordinates are read into `f32` first.
     F32,
 }
 
@@ -516,7 +520,19 @@ struct Ints {
     delta: Vec<BigInt>,
 }
 
-impl Span<'_> {
+impl<'a> Span<'a> {
+    /// The exact shape at the one time `s` (no player margin).
+    fn at(p: &'a [Point], q: &'a [Point], s: f64) -> Span<'a> {
+        Span {
+            p,
+            q,
+            l: Alg::from_f64(s),
+            r: Alg::from_f64(s),
+            shift: None,
+            deltas: Vec::new(),
+        }
+    }
+
     /// Integers for the vertices `vs` (with δ_v when `shift` is given).
     fn ints(&self, vs: &[usize], shift: Option<i32>) -> Ints {
         let mag = |v: usize| {
@@ -650,14 +666,7 @@ fn valid_at_unchecked(
     }
     let n = start.len();
     check_structure(n, triangles)?;
-    let span = Span {
-        p: start,
-        q: end,
-        l: Alg::from_f64(s),
-        r: Alg::from_f64(s),
-        shift: None,
-        deltas: Vec::new(),
-    };
+    let span = Span::at(start, end, s);
     let at = Alg::from_f64(s);
     // The rules of `immersion::valid`: counter-clockwise, and at each
     // corner v with (u, w) after it, not (u strictly right of v → v+1 and

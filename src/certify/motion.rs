@@ -19,6 +19,7 @@ use super::filter::{self, Fe};
 use super::{Failure, Player, Span, certify_span, valid_at_unchecked};
 use crate::geom::Point;
 use crate::immersion::check;
+use crate::immersion::dp::from_apexes;
 use crate::quality::{Quality, triangulate_with};
 
 /// Most points of a shape whose self-overlap [`certify_motion`] decides
@@ -333,14 +334,7 @@ pub(crate) fn triangulate_exact(start: &[Point], end: &[Point], s: f64) -> Optio
         return None;
     }
     let oracle = Oracle {
-        span: Span {
-            p: start,
-            q: end,
-            l: Alg::from_f64(s),
-            r: Alg::from_f64(s),
-            shift: None,
-            deltas: Vec::new(),
-        },
+        span: Span::at(start, end, s),
         at: Alg::from_f64(s),
         approx: start
             .iter()
@@ -441,17 +435,7 @@ pub(crate) fn triangulate_exact(start: &[Point], end: &[Point], s: f64) -> Optio
     if !bit(&q_rows, 0, n - 1) {
         return None;
     }
-    let mut out = Vec::with_capacity(n - 2);
-    let mut stack = vec![(0usize, n - 1)];
-    while let Some((i, j)) = stack.pop() {
-        if j < i + 2 {
-            continue;
-        }
-        let k = apex[i * n + j] as usize;
-        out.push([i as u32, k as u32, j as u32]);
-        stack.push((i, k));
-        stack.push((k, j));
-    }
+    let mut out = from_apexes(n, |i, j| Some(apex[i * n + j] as usize))?;
     out.sort_unstable();
     Some(out)
 }
@@ -461,14 +445,10 @@ mod tests {
     use super::*;
     use crate::immersion::triangulate;
 
+    /// The test kit's xorshift64 stream from `seed`, uniform in [0, 1).
     fn rng(seed: u64) -> impl FnMut() -> f64 {
         let mut s = seed | 1;
-        move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        }
+        move || testkit::rng::unit_from_bits(testkit::rng::xorshift64(&mut s))
     }
 
     #[test]

@@ -68,24 +68,8 @@ impl Curve {
     /// Any [`CurveError`]: the file is missing or unreadable, too large,
     /// has an unknown extension or bad syntax, or the curve is degenerate.
     pub fn from_path(path: impl AsRef<Path>) -> Result<Curve, CurveError> {
-        let path = path.as_ref();
-        let label = path.display().to_string();
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase)
-            .unwrap_or_default();
-        let format = Format::from_extension(&ext).ok_or_else(|| CurveError::UnknownFormat {
-            path: label.clone(),
-            extension: ext.clone(),
-        })?;
-        let bytes = read_file(path, &label)?;
-        let stem = path
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .unwrap_or("curve")
-            .to_string();
-        Curve::from_bytes(&bytes, format, &label, &stem)
+        let file = InputFile::read(path.as_ref(), "curve")?;
+        Curve::from_bytes(&file.bytes, file.format, &file.label, &file.stem)
     }
 
     /// Parses and cleans a curve from memory. `label` names the source in
@@ -103,15 +87,7 @@ impl Curve {
         label: &str,
         default_name: &str,
     ) -> Result<Curve, CurveError> {
-        if bytes.len() as u64 > MAX_FILE_BYTES {
-            return Err(CurveError::TooLarge {
-                path: label.to_string(),
-                what: format!("{} bytes", bytes.len()),
-                limit: format!("{MAX_FILE_BYTES} bytes"),
-            });
-        }
-        // A UTF-8 byte order mark (as some editors save) is not data.
-        let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+        let bytes = screen_bytes(bytes, label)?;
         let raw = match format {
             Format::Json => json::parse(bytes, label)?,
             Format::Text => text::parse(bytes, label)?,
@@ -240,6 +216,59 @@ impl Curve {
     pub fn is_simple(&self) -> bool {
         polygon::is_simple(&self.points)
     }
+}
+
+/// A curve or drawing file as read: its bytes, the format its extension
+/// names, the label naming it in errors, and its file stem.
+pub(crate) struct InputFile {
+    pub(crate) bytes: Vec<u8>,
+    pub(crate) format: Format,
+    pub(crate) label: String,
+    pub(crate) stem: String,
+}
+
+impl InputFile {
+    /// Reads `path` (at most [`MAX_FILE_BYTES`]); an unknown extension is
+    /// refused before the file is read. `unnamed` is the stem of a path
+    /// without one.
+    pub(crate) fn read(path: &Path, unnamed: &str) -> Result<InputFile, CurveError> {
+        let label = path.display().to_string();
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .unwrap_or_default();
+        let format = Format::from_extension(&ext).ok_or_else(|| CurveError::UnknownFormat {
+            path: label.clone(),
+            extension: ext.clone(),
+        })?;
+        let bytes = read_file(path, &label)?;
+        let stem = path
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or(unnamed)
+            .to_string();
+        Ok(InputFile {
+            bytes,
+            format,
+            label,
+            stem,
+        })
+    }
+}
+
+/// Data given in memory, screened as a file would be: longer than
+/// [`MAX_FILE_BYTES`] is refused before parsing, and a UTF-8 byte order
+/// mark (as some editors save) is not data.
+pub(crate) fn screen_bytes<'a>(bytes: &'a [u8], label: &str) -> Result<&'a [u8], CurveError> {
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(CurveError::TooLarge {
+            path: label.to_string(),
+            what: format!("{} bytes", bytes.len()),
+            limit: format!("{MAX_FILE_BYTES} bytes"),
+        });
+    }
+    Ok(bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes))
 }
 
 /// Reads a curve file through the [`MAX_FILE_BYTES`] cap

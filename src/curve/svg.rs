@@ -81,18 +81,28 @@ pub(crate) fn parse(bytes: &[u8], label: &str) -> Result<RawCurve, CurveError> {
 }
 
 /// Which closed shapes of an SVG drawing become curves when one drawing
-/// holds several (a sequence of keyframes drawn in one file).
+/// holds several (a sequence of keyframes drawn in one file). With the
+/// `cli` feature it is the command line's `--svg-keys` (each variant's
+/// first doc paragraph is its help there).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum SvgShapes {
-    /// Each top-level group (an Inkscape layer is one) when there are at
-    /// least two that hold a closed shape, else each closed shape.
+    /// Top-level groups (Inkscape layers) when there are two or more, else each
+    /// closed shape.
+    ///
+    /// The groups count when at least two hold a closed shape.
     #[default]
     Auto,
-    /// Every closed subpath of every shape, in document order.
+    /// Each closed shape, in document order.
+    ///
+    /// Every closed subpath of every shape.
     Shapes,
-    /// The closed subpath of each top-level group, in document
-    /// order (a group of several closed subpaths is refused, naming them). A group that is alone at its level (such as the one a
-    /// `viewBox` or a wrapping `<g>` makes) is looked into.
+    /// The closed shape of each top-level group or layer (a group of several
+    /// closed shapes is refused, naming them).
+    ///
+    /// In document order, a closed subpath each. A group that is alone at
+    /// its level (such as the one a `viewBox` or a wrapping `<g>` makes)
+    /// is looked into.
     Groups,
 }
 

@@ -118,13 +118,7 @@ pub(super) fn read(bytes: &[u8], label: &str, name: &str) -> Result<Drawing, Dra
                 second: k + 1,
             });
         }
-        shapes.push(Shape {
-            id,
-            label: shape_label,
-            points: curve.points,
-            reversed: curve.reversed,
-            style,
-        });
+        shapes.push(Shape::new(id, shape_label, curve, style));
     }
     if shapes.is_empty() {
         return Err(DrawingError::Empty {

@@ -5,18 +5,24 @@ use super::{Drawing, Shape};
 use crate::geom::Point;
 use crate::geom::polygon::{area_centroid, signed_area};
 
-/// How shapes are paired.
+/// How shapes are paired. With the `cli` feature it is the command line's
+/// `--match` (each variant's first doc paragraph is its help there).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum MatchMode {
-    /// Shapes with the same non-empty id; the others appear or vanish.
+    /// The same id; shapes without a partner appear or vanish.
+    ///
+    /// Only non-empty ids pair.
     Id,
-    /// The k-th shape with the k-th; the extra shapes of the longer
-    /// drawing appear or vanish.
+    /// The k-th shape with the k-th.
+    ///
+    /// The extra shapes of the longer drawing appear or vanish.
     Order,
-    /// The assignment of least total cost (position, size, outline),
-    /// where leaving a shape unmatched costs 1 (the cost of a shape's own
-    /// size).
+    /// The least total cost of position, size and outline.
+    ///
+    /// The optimal assignment, where leaving a shape unmatched costs 1
+    /// (the cost of a shape's own size).
     #[default]
     Auto,
 }

@@ -34,7 +34,7 @@ pub use tween::{
     DrawingFrame, DrawingTween, DrawingTweenError, FrameShape, GROWN_SCALE, ShapeKeys, ShapeRole,
 };
 
-use crate::curve::{Curve, CurveError, Format, MAX_FILE_BYTES};
+use crate::curve::{Curve, CurveError, Format};
 use crate::geom::Point;
 use crate::immersion::{self, Immersion, NotSelfOverlapping};
 use rayon::prelude::*;
@@ -63,6 +63,20 @@ pub struct Shape {
     /// Its paint.
     #[serde(flatten)]
     pub style: Style,
+}
+
+impl Shape {
+    /// The shape of a cleaned and oriented `curve`, with its id, label and
+    /// paint.
+    pub(crate) fn new(id: String, label: String, curve: Curve, style: Style) -> Shape {
+        Shape {
+            id,
+            label,
+            points: curve.points,
+            reversed: curve.reversed,
+            style,
+        }
+    }
 }
 
 /// An ordered list of shapes, bottom first.
@@ -158,24 +172,8 @@ impl Drawing {
     /// [`DrawingError::Curve`] for a file or a shape that cannot be read
     /// (naming the shape), [`DrawingError::Hole`], [`DrawingError::Empty`].
     pub fn read_path(path: impl AsRef<Path>) -> Result<Drawing, DrawingError> {
-        let path = path.as_ref();
-        let label = path.display().to_string();
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase)
-            .unwrap_or_default();
-        let format = Format::from_extension(&ext).ok_or_else(|| CurveError::UnknownFormat {
-            path: label.clone(),
-            extension: ext.clone(),
-        })?;
-        let bytes = crate::curve::read_file(path, &label)?;
-        let stem = path
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .unwrap_or("drawing")
-            .to_string();
-        Drawing::from_bytes(&bytes, format, &label, &stem)
+        let file = crate::curve::InputFile::read(path.as_ref(), "drawing")?;
+        Drawing::from_bytes(&file.bytes, file.format, &file.label, &file.stem)
     }
 
     /// [`Drawing::read_path`] on data in memory; `label` names the source
@@ -190,15 +188,7 @@ impl Drawing {
         label: &str,
         name: &str,
     ) -> Result<Drawing, DrawingError> {
-        if bytes.len() as u64 > MAX_FILE_BYTES {
-            return Err(CurveError::TooLarge {
-                path: label.to_string(),
-                what: format!("{} bytes", bytes.len()),
-                limit: format!("{MAX_FILE_BYTES} bytes"),
-            }
-            .into());
-        }
-        let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+        let bytes = crate::curve::screen_bytes(bytes, label)?;
         let drawing = match format {
             Format::Svg => svg::read(bytes, label, name)?,
             Format::Json if json::is_drawing(bytes) => json::read(bytes, label, name)?,
@@ -247,16 +237,15 @@ impl Drawing {
     }
 
     /// The drawing of one curve, painted with `style`.
-    pub(crate) fn of_curve(curve: Curve, style: Style) -> Drawing {
+    pub(crate) fn of_curve(mut curve: Curve, style: Style) -> Drawing {
         Drawing {
-            shapes: vec![Shape {
-                id: String::new(),
-                label: "shape 1".to_string(),
-                points: curve.points,
-                reversed: curve.reversed,
+            name: std::mem::take(&mut curve.name),
+            shapes: vec![Shape::new(
+                String::new(),
+                "shape 1".to_string(),
+                curve,
                 style,
-            }],
-            name: curve.name,
+            )],
             notices: Vec::new(),
             single_curve: true,
         }

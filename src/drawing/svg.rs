@@ -73,13 +73,7 @@ fn from_elements(elements: &[Element], label: &str, name: &str) -> Result<Drawin
                 (id, 1) => id.to_string(),
                 (id, _) => format!("{id}.{}", j + 1),
             };
-            shapes.push(Shape {
-                id,
-                label: shape_label,
-                points: curve.points,
-                reversed: curve.reversed,
-                style,
-            });
+            shapes.push(Shape::new(id, shape_label, curve, style));
         }
         if kept.len() > 1 {
             let polys: Vec<&[crate::geom::Point]> = shapes[first..]

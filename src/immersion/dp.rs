@@ -414,14 +414,27 @@ pub(crate) fn witness_common(curves: &[&[Point]], table: &Table) -> Option<Vec<[
     if n < 3 || !table.get(0, n - 1) {
         return None;
     }
-    let mut out = Vec::with_capacity(n - 2);
+    from_apexes(n, |i, j| {
+        debug_assert!(table.get(i, j), "the witness reached a false cell: a bug");
+        table.apex(curves, i, j)
+    })
+}
+
+/// The triangulation of the n-gon that an interval DP chose: from the
+/// chord (0, n − 1) down, the triangle `[i, k, j]` on each chord (i, j)
+/// with `k = apex(i, j)`, then the chords (i, k) and (k, j). `None` when
+/// `apex` has none for a chord it reaches.
+pub(crate) fn from_apexes(
+    n: usize,
+    mut apex: impl FnMut(usize, usize) -> Option<usize>,
+) -> Option<Vec<[u32; 3]>> {
+    let mut out = Vec::with_capacity(n.saturating_sub(2));
     let mut stack = vec![(0usize, n - 1)];
     while let Some((i, j)) = stack.pop() {
         if j < i + 2 {
             continue;
         }
-        debug_assert!(table.get(i, j), "the witness reached a false cell: a bug");
-        let k = table.apex(curves, i, j)?;
+        let k = apex(i, j)?;
         out.push([i as u32, k as u32, j as u32]);
         stack.push((i, k));
         stack.push((k, j));
@@ -446,12 +459,7 @@ mod tests {
     #[test]
     fn the_diagonal_filter_keeps_every_chord_in_both_cones() {
         let mut s = 17u64;
-        let mut r = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s
-        };
+        let mut r = move || testkit::rng::xorshift64(&mut s);
         let mut kept = 0;
         for round in 0..500 {
             let n = 4 + (r() % 70) as usize;

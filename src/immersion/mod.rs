@@ -358,14 +358,10 @@ mod tests {
     }
     use super::*;
 
+    /// The test kit's xorshift64 stream from `seed`, uniform in [0, 1).
     fn rng(seed: u64) -> impl FnMut() -> f64 {
         let mut s = seed | 1;
-        move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        }
+        move || testkit::rng::unit_from_bits(testkit::rng::xorshift64(&mut s))
     }
 
     /// Exhaustive: does any triangulation of 0..n use only valid triangles?

@@ -348,14 +348,10 @@ mod tests {
     use super::*;
     use crate::geom::predicates::is_fan_order_less;
 
+    /// The test kit's xorshift64 stream from `seed`.
     fn rng(seed: u64) -> impl FnMut() -> u64 {
         let mut s = seed | 1;
-        move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            s
-        }
+        move || testkit::rng::xorshift64(&mut s)
     }
 
     #[test]

@@ -168,14 +168,8 @@ pub fn morph_with(
             continue;
         }
         match build(p) {
-            Ok(frames) => {
-                return Ok(Morph {
-                    paths: vec![p],
-                    fallback: k > 0,
-                    fallbacks,
-                    frames,
-                });
-            }
+            // Every path before the k-th failed and left a fallback.
+            Ok(frames) => return Ok(Morph::new(vec![p], fallbacks, frames)),
             Err((t, defect)) => {
                 fallbacks.push(Fallback::new(
                     &format!("did not use the {p} path"),

@@ -59,7 +59,10 @@ impl Frame {
 /// In JSON: `{"path": ..., "fallback": ..., "fallbacks": [...], "motion":
 /// {"detour": ..., "unwind": ...}, "frames": [...]}`, where `motion` holds
 /// the [`detour`](crate::frames::detour) and [`unwind`](crate::frames::unwind) of the frames (`null` where they are not
-/// defined, e.g. when the vertex count changes between frames).
+/// defined, e.g. when the vertex count changes between frames). They are
+/// computed from the frames the first time the morph is written and kept,
+/// so writing it again does not search again; change `frames` only
+/// before writing it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Morph {
     /// The third-vertex paths the frames were made with, in order of first
@@ -73,9 +76,51 @@ pub struct Morph {
     pub fallbacks: Vec<Fallback>,
     /// The frames, in order of t.
     pub frames: Vec<Frame>,
+    /// The motion measures of `frames`, once they are first written.
+    pub(crate) motion: MotionOnce,
+}
+
+/// A morph's motion measures in JSON: each `None` (`null`) where it is not
+/// defined. Computed in [`crate::frames`], beside the measures.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub(crate) struct Motion {
+    pub(crate) detour: Option<f64>,
+    pub(crate) unwind: Option<f64>,
+}
+
+/// The [`Motion`] of a morph's frames, computed at most once. It is a
+/// cache of what the frames determine, so two morphs are equal by their
+/// other fields whether or not either has filled it.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct MotionOnce(std::sync::OnceLock<Motion>);
+
+impl MotionOnce {
+    /// The measures, computed by `compute` the first time only.
+    pub(crate) fn get_or_init(&self, compute: impl FnOnce() -> Motion) -> Motion {
+        *self.0.get_or_init(compute)
+    }
+}
+
+impl PartialEq for MotionOnce {
+    fn eq(&self, _: &MotionOnce) -> bool {
+        true
+    }
 }
 
 impl Morph {
+    /// A morph of `frames`, made with `paths` (in order of first use),
+    /// with the recoveries `fallbacks` (`fallback` is set when there are
+    /// any).
+    pub fn new(paths: Vec<ThirdVertexPath>, fallbacks: Vec<Fallback>, frames: Vec<Frame>) -> Morph {
+        Morph {
+            paths,
+            fallback: !fallbacks.is_empty(),
+            fallbacks,
+            frames,
+            motion: MotionOnce::default(),
+        }
+    }
+
     /// The paths used, as in the JSON: one name, or names joined by `+`.
     pub fn path_name(&self) -> String {
         path_names(&self.paths)

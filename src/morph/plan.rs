@@ -13,17 +13,23 @@ use crate::quality::{Quality, triangulate_with};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-/// How the two curves are brought to the same vertex count.
+/// How the two curves are brought to the same vertex count. With the `cli`
+/// feature it is the command line's `--counts` (each variant's first doc
+/// paragraph is its help there).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Counts {
-    /// Insert vertices on the longest edges of the curve with fewer
-    /// vertices; original vertices stay exactly where they are.
+    /// Insert vertices on the longest edges; original vertices stay put.
+    ///
+    /// The edges of the curve with fewer vertices; its original vertices
+    /// stay exactly where they are.
     #[default]
     Insert,
-    /// Resample both curves evenly by arc length to the larger count
-    /// (original vertices move onto the resampled positions). Where that
-    /// would make a curve not self-overlapping, vertices are inserted
-    /// instead and the report's fallbacks say so.
+    /// Resample both curves evenly by arc length.
+    ///
+    /// To the larger count (original vertices move onto the resampled
+    /// positions). Where that would make a curve not self-overlapping,
+    /// vertices are inserted instead and the report's fallbacks say so.
     Resample,
 }
 
@@ -203,14 +209,21 @@ pub(crate) fn equal_counts(a: &[Point], b: &[Point], counts: Counts) -> (Vec<Poi
     }
 }
 
-/// The intermediate that staged flips happen on the way to.
+/// The intermediate that staged flips happen on the way to. With the `cli`
+/// feature it is the command line's `--intermediate` (each variant's first
+/// doc paragraph is its help there).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Intermediate {
-    /// A valid shape that looks like the other curve (docs/design.md §7a):
-    /// overlaps extend instead of unwinding.
+    /// A valid shape that looks like the other curve: overlaps extend instead
+    /// of unwinding.
+    ///
+    /// docs/design.md §7a.
     #[default]
     Target,
-    /// A convex disk with the curve's area (Mukherjee & Gopi §6.2, docs/design.md §7).
+    /// A convex disk with the curve's area (Mukherjee & Gopi's route).
+    ///
+    /// Mukherjee & Gopi §6.2, docs/design.md §7.
     Disk,
 }
 
@@ -224,41 +237,73 @@ impl Intermediate {
     }
 }
 
-/// How vertex `i` of the source is matched to a vertex of the target
-/// (after equalising counts): a cyclic shift chosen by one of these rules.
-/// Every rule is symmetric, so swapping the curves gives the opposite
-/// shift.
+/// How vertex `i` of the source is matched to a vertex of the target (after
+/// equalising counts): a cyclic shift chosen by one of these rules. Every
+/// rule is symmetric, so swapping the curves gives the opposite shift. With
+/// the `cli` feature it is the command line's `--correspondence`, variants
+/// in its order (each variant's first doc paragraph is its help there; the
+/// experimental rules are hidden, and refused by
+/// [`FromStr`](std::str::FromStr), unless built with the `experimental`
+/// feature).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Correspondence {
+    /// Match the outlines by arc length up to a rotation and scale; inserted
+    /// vertices go where the other curve's are.
+    ///
+    /// The shift that maps one outline best onto the other (up to a
+    /// rotation, scale and translation), with the inserted vertices placed
+    /// where the other curve's vertices are (original vertices stay
+    /// exact). What the user sees corresponds.
+    #[cfg_attr(
+        all(feature = "cli", not(feature = "experimental")),
+        value(hide = true)
+    )]
+    Outline,
+    /// As outline, with the curves' corners (turns of 60° or more, else rounded
+    /// caps: 160° within 3% of the perimeter) matched in order and the arc
+    /// between them piece by piece.
+    ///
+    /// As [`Correspondence::Outline`], piece by piece between corners (a
+    /// strip's long and short edges correspond); where the sharp corners
+    /// do not match up, the rounded caps (a stretch of at most 3% of the
+    /// perimeter turning by 160° or more) are matched instead; the outline
+    /// rule when neither matches.
+    Corners,
+    /// The cyclic shift with the fewest edge flips between the triangulations.
+    ///
+    /// The fewest crossings between the two triangulations; ties go to
+    /// the shapes' best geometric match.
+    MinFlips,
+    /// Match the pivot vertices of the two triangulations (Mukherjee & Gopi
+    /// §6.1).
+    #[cfg_attr(
+        all(feature = "cli", not(feature = "experimental")),
+        value(hide = true)
+    )]
+    Pivot,
+    /// The cyclic shift that best matches the shapes themselves.
+    ///
+    /// The least sum of squared distances between matched vertices after
+    /// normalising position and size.
+    #[cfg_attr(
+        all(feature = "cli", not(feature = "experimental")),
+        value(hide = true)
+    )]
+    Shape,
     /// Vertex 0 matches vertex 0.
+    #[cfg_attr(
+        all(feature = "cli", not(feature = "experimental")),
+        value(hide = true)
+    )]
     Identity,
-    /// Plan the morph with the outline rule, the min-flips rule and, when
-    /// the curves' corners match up, the corners rule, and keep the plan
-    /// whose vertices travel less (docs/design.md §7b: choose by what the
-    /// user sees, with a trial morph).
+    /// Plan with the outline, min-flips and (when the corners match up) corners
+    /// rules; keep the one whose vertices travel less.
+    ///
+    /// A trial morph per rule (docs/design.md §7b: choose by what the user
+    /// sees).
     #[default]
     Best,
-    /// The pivot vertices (Mukherjee & Gopi §6.1) of the two triangulations match.
-    Pivot,
-    /// The shift with the fewest crossings between the two triangulations
-    /// (fewest flips); ties go to the shapes' best geometric match.
-    MinFlips,
-    /// The shift that best matches the shapes themselves: least sum of
-    /// squared distances between matched vertices after normalising
-    /// position and size.
-    Shape,
-    /// Match the outlines by arc length, up to a rotation, scale and
-    /// translation: the shift that maps one outline best onto the other,
-    /// with the inserted vertices placed where the other curve's vertices
-    /// are (original vertices stay exact). What the user sees corresponds.
-    Outline,
-    /// As [`Correspondence::Outline`], with the corners of the two curves
-    /// matched in order and the arc length between them matched piece by
-    /// piece (a strip's long and short edges correspond); where the sharp
-    /// corners (turns of 60° or more) do not match up, rounded caps (a
-    /// stretch of at most 3% of the perimeter turning by 160° or more)
-    /// are matched instead; the outline rule when neither matches.
-    Corners,
 }
 
 impl Correspondence {
@@ -292,10 +337,10 @@ impl Correspondence {
     /// `min-flips`, and the experimental ones with the `experimental`
     /// feature.
     pub fn offered() -> Vec<Correspondence> {
-        Correspondence::ALL
-            .into_iter()
-            .filter(|c| cfg!(feature = "experimental") || !c.is_experimental())
-            .collect()
+        crate::morph::propagate::paths::offered(
+            &Correspondence::ALL,
+            Correspondence::is_experimental,
+        )
     }
 
     /// The CLI name.
@@ -315,20 +360,13 @@ impl Correspondence {
 impl std::str::FromStr for Correspondence {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        let offered = Correspondence::offered();
-        let names: Vec<&str> = offered.iter().map(|c| c.as_str()).collect();
-        match Correspondence::ALL.into_iter().find(|c| c.as_str() == s) {
-            Some(c) if offered.contains(&c) => Ok(c),
-            Some(c) => Err(crate::morph::propagate::paths::experimental(
-                "correspondence",
-                c.as_str(),
-                &names,
-            )),
-            None => Err(format!(
-                "unknown correspondence '{s}'; use {}",
-                names.join(", ")
-            )),
-        }
+        crate::morph::propagate::paths::parse_offered(
+            "correspondence",
+            s,
+            &Correspondence::ALL,
+            Correspondence::as_str,
+            Correspondence::is_experimental,
+        )
     }
 }
 

@@ -658,12 +658,7 @@ impl Tween {
             }
             frames.push(frame);
         }
-        Ok(Morph {
-            paths,
-            fallback: !fallbacks.is_empty(),
-            fallbacks,
-            frames,
-        })
+        Ok(Morph::new(paths, fallbacks, frames))
     }
 }
 

@@ -37,7 +37,7 @@ use rayon::prelude::*;
 
 use crate::geom::Point;
 use crate::immersion::NotSelfOverlapping;
-use crate::immersion::dp::{Table, decide, fill_by_tiles, is_ccw};
+use crate::immersion::dp::{Table, decide, fill_by_tiles, from_apexes, is_ccw};
 use crate::immersion::valid::open_range_word;
 
 use crate::geom::polygon::sin2_min_angle;
@@ -176,22 +176,12 @@ pub(crate) fn maxmin(
         cols.set(cj + 2 * i + 1, best_s);
         arg[i * n + j].store(best_k, Relaxed);
     });
-    let mut out = Vec::with_capacity(n - 2);
-    let mut stack = vec![(0usize, n - 1)];
-    while let Some((i, j)) = stack.pop() {
-        if j < i + 2 {
-            continue;
-        }
+    let mut out = from_apexes(n, |i, j| {
         let k = arg[i * n + j].load(Relaxed);
-        if k == NONE {
-            debug_assert!(false, "max-min DP backtrack hit an empty cell: a bug");
-            return Err(NotSelfOverlapping::NoValidTriangulation);
-        }
-        let k = k as usize;
-        out.push([i as u32, k as u32, j as u32]);
-        stack.push((i, k));
-        stack.push((k, j));
-    }
+        debug_assert_ne!(k, NONE, "max-min DP backtrack hit an empty cell: a bug");
+        (k != NONE).then_some(k as usize)
+    })
+    .ok_or(NotSelfOverlapping::NoValidTriangulation)?;
     out.sort_unstable();
     Ok(out)
 }

@@ -383,6 +383,23 @@ impl Sequence {
         self.tweens.iter().map(Tween::path_length).collect()
     }
 
+    /// The segments' paces laid end to end: where a fraction of a segment
+    /// falls on the axis of the whole sequence.
+    fn pace(&self) -> Pace {
+        let lengths = self.path_lengths();
+        let mut starts = Vec::with_capacity(lengths.len());
+        let mut total = 0.0;
+        for l in &lengths {
+            starts.push(total);
+            total += l;
+        }
+        Pace {
+            lengths,
+            starts,
+            total,
+        }
+    }
+
     /// The keys of the whole sequence (every segment's
     /// [`Tween::keyframes`], in the sequence's vertex numbering), with `t`
     /// the fraction of the whole sequence's pace, as [`Sequence::frames`]
@@ -390,19 +407,15 @@ impl Sequence {
     /// triangulation of the segment that follows it. Times strictly
     /// increase; a segment that does not move adds no key.
     pub fn keyframes(&self) -> Vec<Keyframe> {
-        let lengths = self.path_lengths();
-        let total: f64 = lengths.iter().sum();
+        let pace = self.pace();
         let segments = self.tweens.len();
         let mut out: Vec<Keyframe> = Vec::new();
-        let mut start = 0.0;
         for (s, tween) in self.tweens.iter().enumerate() {
             let (n, o) = (self.n, self.offsets[s]);
             for (k, key) in tween.keyframes().into_iter().enumerate() {
-                let t = if total > 0.0 {
-                    ((start + key.t * lengths[s]) / total).clamp(0.0, 1.0)
-                } else {
-                    (s as f64 + key.t) / segments as f64
-                };
+                let t = pace
+                    .time(s, key.t)
+                    .unwrap_or((s as f64 + key.t) / segments as f64);
                 let key = Keyframe {
                     t,
                     points: (0..n).map(|i| key.points[(i + o) % n]).collect(),
@@ -422,7 +435,6 @@ impl Sequence {
                     _ => out.push(key),
                 }
             }
-            start += lengths[s];
         }
         if let Some(last) = out.last_mut() {
             last.t = 1.0;
@@ -433,25 +445,15 @@ impl Sequence {
     /// The time of every frame of `schedule` on the axis of
     /// [`Sequence::keyframes`] (the fraction of the whole pace).
     pub fn frame_times(&self, schedule: &Schedule) -> Vec<f64> {
-        let lengths = self.path_lengths();
-        let total: f64 = lengths.iter().sum();
-        let mut start = Vec::with_capacity(lengths.len());
-        let mut acc = 0.0;
-        for l in &lengths {
-            start.push(acc);
-            acc += l;
-        }
-        let segments = lengths.len().max(1);
+        let pace = self.pace();
+        let segments = pace.lengths.len().max(1);
         schedule
             .samples
             .iter()
             .map(|sample| {
                 let s = sample.segment;
-                if total > 0.0 {
-                    ((start[s] + sample.t * lengths[s]) / total).clamp(0.0, 1.0)
-                } else {
-                    (s as f64 + sample.t) / segments as f64
-                }
+                pace.time(s, sample.t)
+                    .unwrap_or((s as f64 + sample.t) / segments as f64)
             })
             .collect()
     }
@@ -523,14 +525,7 @@ impl Sequence {
     ///
     /// As [`Tween::frame`] (a bug), naming the segment.
     pub fn frames(&self, schedule: &Schedule) -> Result<Morph, SequenceError> {
-        let lengths = self.path_lengths();
-        let total: f64 = lengths.iter().sum();
-        let mut start = Vec::with_capacity(lengths.len());
-        let mut acc = 0.0;
-        for l in &lengths {
-            start.push(acc);
-            acc += l;
-        }
+        let pace = self.pace();
         let last = schedule.samples.len().saturating_sub(1).max(1);
         let made: Vec<(Frame, Option<Fallback>)> = schedule
             .samples
@@ -542,11 +537,7 @@ impl Sequence {
                     .frame_with_fallback(sample.t)
                     .map_err(|source| SequenceError::Morph { key: s + 1, source })?;
                 let mut f = self.relabel(s, f);
-                f.t = if total > 0.0 {
-                    ((start[s] + sample.t * lengths[s]) / total).clamp(0.0, 1.0)
-                } else {
-                    i as f64 / last as f64
-                };
+                f.t = pace.time(s, sample.t).unwrap_or(i as f64 / last as f64);
                 Ok((f, fb))
             })
             .collect::<Result<_, SequenceError>>()?;
@@ -579,11 +570,26 @@ impl Sequence {
             }
             frames.push(f);
         }
-        Ok(Morph {
-            paths,
-            fallback: !fallbacks.is_empty(),
-            fallbacks,
-            frames,
-        })
+        Ok(Morph::new(paths, fallbacks, frames))
+    }
+}
+
+/// The segments of a sequence laid end to end by their paces
+/// ([`Sequence::path_lengths`]).
+struct Pace {
+    /// Each segment's pace.
+    lengths: Vec<f64>,
+    /// Where each segment starts: the sum of the paces before it.
+    starts: Vec<f64>,
+    /// The sum of all paces.
+    total: f64,
+}
+
+impl Pace {
+    /// Fraction `t` of segment `s` as a fraction of the whole; `None` when
+    /// nothing moves (each caller spreads the times its own way).
+    fn time(&self, s: usize, t: f64) -> Option<f64> {
+        (self.total > 0.0)
+            .then(|| ((self.starts[s] + t * self.lengths[s]) / self.total).clamp(0.0, 1.0))
     }
 }

@@ -24,21 +24,30 @@
 
 use immerse_base::geom::{Orientation, Point, orient};
 
-/// Which barycentric coordinates represent an interior vertex.
+/// Which barycentric coordinates represent an interior vertex. With the
+/// `cli` feature it is the command line's `--weights`, variants in its
+/// order (each variant's first doc paragraph is its help there).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Weights {
-    /// Floater's averaged weights (Floater & Gotsman eq. 5.5).
-    Floater,
-    /// Mean value coordinates (Surazhsky & Gotsman *Intrinsic Morphing* eq. 2).
+    /// Mean value coordinates (Floater 2003).
+    ///
+    /// As in Surazhsky & Gotsman *Intrinsic Morphing* eq. 2.
     #[default]
     MeanValue,
-    /// Uniform (Tutte) weights `1/d`; they do not reproduce the vertex.
+    /// Floater's averaged shape-preserving weights.
+    ///
+    /// Floater & Gotsman eq. 5.5.
+    Floater,
+    /// Uniform (Tutte) weights; end frames become Tutte drawings.
+    ///
+    /// `1/d`: they do not reproduce the vertex.
     Uniform,
 }
 
 impl Weights {
-    /// All choices.
-    pub const ALL: [Weights; 3] = [Weights::Floater, Weights::MeanValue, Weights::Uniform];
+    /// All choices, in CLI order.
+    pub const ALL: [Weights; 3] = [Weights::MeanValue, Weights::Floater, Weights::Uniform];
 
     /// The name used on the command line: `floater`, `mean-value`, `uniform`.
     pub fn as_str(self) -> &'static str {

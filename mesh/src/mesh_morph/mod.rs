@@ -87,21 +87,33 @@ use crate::tiling::validate::{Topology, faces_strictly_convex, validate_topology
 use crate::tiling::{Tiling, TilingError};
 use immerse_base::geom::{Orientation, Point, orient};
 
-/// How the vertices travel; the names are the CLI values.
+/// How the vertices travel; the names are the CLI values. With the `cli`
+/// feature it is the command line's `--method` (each variant's first doc
+/// paragraph is its help there).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Method {
-    /// Straight lines at constant speed (`linear`).
+    /// Straight-line vertex paths (may fold; reported per frame).
+    ///
+    /// At constant speed (`linear`).
     Linear,
-    /// Interpolated convex combination weights (`convex`, Floater & Gotsman).
+    /// Interpolate barycentric weights and solve (Floater–Gotsman).
+    ///
+    /// Convex combination weights (`convex`, Floater & Gotsman).
     Convex,
-    /// Interpolated angles and lengths in mean value coordinates
-    /// (`intrinsic`, Surazhsky & Gotsman *Intrinsic Morphing*).
+    /// Interpolate angles and edge lengths in the mean value formula.
+    ///
+    /// Mean value coordinates (`intrinsic`, Surazhsky & Gotsman *Intrinsic
+    /// Morphing*).
     Intrinsic,
-    /// Neighbourhood matrices raised to a power (`power`, Surazhsky & Gotsman
-    /// *Controllable Morphing* §3.3).
+    /// Neighbourhood matrices to the largest valid power (closer to linear).
+    ///
+    /// `power`, Surazhsky & Gotsman *Controllable Morphing* §3.3.
     Power,
-    /// Star by star, linear where valid (`local`, Surazhsky & Gotsman
-    /// *Controllable Morphing* §4.1).
+    /// Linear where each star allows it, polar averaging elsewhere.
+    ///
+    /// Star by star (`local`, Surazhsky & Gotsman *Controllable Morphing*
+    /// §4.1).
     Local,
 }
 

@@ -2,6 +2,13 @@
 //! are turned into library options in `commands/`.
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
+use immerse::Quality;
+use immerse::certify::Player;
+use immerse::curve::SvgShapes;
+use immerse::drawing::MatchMode;
+use immerse::morph::{Correspondence, Counts, Intermediate, ThirdVertexPath};
+use immerse_mesh::coords::Weights;
+use immerse_mesh::mesh_morph::Method;
 use std::path::PathBuf;
 
 const AFTER_HELP: &str = "\
@@ -123,17 +130,6 @@ pub(crate) enum Command {
     Certify(CertifyArgs),
 }
 
-/// The arithmetic a player interpolates with (the certificate's margin).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum PlayerArg {
-    /// The coordinates as written, interpolated exactly: no margin.
-    Exact,
-    /// Interpolation in double precision (browsers' SVG and CSS).
-    F64,
-    /// Interpolation in single precision (native Lottie players, GPUs).
-    F32,
-}
-
 /// Arguments of `immerse certify`.
 #[derive(Debug, Args)]
 pub(crate) struct CertifyArgs {
@@ -141,7 +137,7 @@ pub(crate) struct CertifyArgs {
     pub(crate) file: PathBuf,
     /// Certify against this player's arithmetic.
     #[arg(long, value_enum, default_value = "exact")]
-    pub(crate) player: PlayerArg,
+    pub(crate) player: Player,
     /// Most triangulations per segment before it is undecided.
     #[arg(long, default_value_t = 24, value_parser = clap::value_parser!(u32).range(1..=10_000))]
     pub(crate) max_pieces: u32,
@@ -160,28 +156,6 @@ pub(crate) struct CertifyArgs {
     pub(crate) force: bool,
 }
 
-/// How the shapes of two drawings are paired.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum MatchArg {
-    /// The same id; shapes without a partner appear or vanish.
-    Id,
-    /// The k-th shape with the k-th.
-    Order,
-    /// The least total cost of position, size and outline.
-    Auto,
-}
-
-/// Which shapes of one SVG drawing are the keys.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum SvgKeysArg {
-    /// Top-level groups (Inkscape layers) when there are two or more, else each closed shape.
-    Auto,
-    /// Each closed shape, in document order.
-    Shapes,
-    /// The closed shape of each top-level group or layer (a group of several closed shapes is refused, naming them).
-    Groups,
-}
-
 /// Arguments of `immerse animate`.
 #[derive(Debug, Args)]
 #[command(mut_arg("onion", |a| a.help("Draw the first and last key faintly behind every frame")))]
@@ -197,12 +171,12 @@ pub(crate) struct AnimateArgs {
     pub(crate) timeline: Option<PathBuf>,
     /// Which shapes of an SVG drawing are the keys (default auto).
     #[arg(long, value_enum)]
-    pub(crate) svg_keys: Option<SvgKeysArg>,
+    pub(crate) svg_keys: Option<SvgShapes>,
     /// For keys that are drawings (files of several shapes, or an SVG
     /// whose groups hold several): which shape of a key becomes which of
     /// the next (docs/design.md §2b).
-    #[arg(long = "match", value_enum, default_value_t = MatchArg::Auto)]
-    pub(crate) match_mode: MatchArg,
+    #[arg(long = "match", value_enum, default_value_t = MatchMode::Auto)]
+    pub(crate) match_mode: MatchMode,
     /// Frames over the whole sequence, holds included (default: the
     /// timeline's, else 2 seconds per segment at --fps).
     #[arg(long, value_parser = clap::value_parser!(u32).range(2..=100_000))]
@@ -224,14 +198,14 @@ pub(crate) struct AnimateArgs {
     #[command(flatten)]
     pub(crate) motion: MotionArgs,
     /// Triangulation quality of each key.
-    #[arg(long, value_enum, default_value_t = QualityArg::Delaunay)]
-    pub(crate) quality: QualityArg,
+    #[arg(long, value_enum, default_value_t = Quality::Delaunay)]
+    pub(crate) quality: Quality,
     /// Where incompatible keys change triangulation on the way.
-    #[arg(long, value_enum, default_value_t = IntermediateArg::Target)]
-    pub(crate) intermediate: IntermediateArg,
+    #[arg(long, value_enum, default_value_t = Intermediate::Target)]
+    pub(crate) intermediate: Intermediate,
     /// How vertices of consecutive keys without shape hints are matched.
-    #[arg(long, value_enum, default_value_t = CorrespondenceArg::Best)]
-    pub(crate) correspondence: CorrespondenceArg,
+    #[arg(long, value_enum, default_value_t = Correspondence::Best)]
+    pub(crate) correspondence: Correspondence,
     /// Write every frame as JSON (the format of morph --json, with the
     /// keys' frame numbers and the speeds at them) to FILE; bare --json,
     /// "-" or /dev/stdout print it on stdout.
@@ -345,32 +319,6 @@ pub(crate) struct ServeLimits {
     pub(crate) drain_timeout: u64,
 }
 
-/// Mesh morph method.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum MethodArg {
-    /// Straight-line vertex paths (may fold; reported per frame).
-    Linear,
-    /// Interpolate barycentric weights and solve (Floater–Gotsman).
-    Convex,
-    /// Interpolate angles and edge lengths in the mean value formula.
-    Intrinsic,
-    /// Neighbourhood matrices to the largest valid power (closer to linear).
-    Power,
-    /// Linear where each star allows it, polar averaging elsewhere.
-    Local,
-}
-
-/// Barycentric weights of the convex-combination methods.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum WeightsArg {
-    /// Mean value coordinates (Floater 2003).
-    MeanValue,
-    /// Floater's averaged shape-preserving weights.
-    Floater,
-    /// Uniform (Tutte) weights; end frames become Tutte drawings.
-    Uniform,
-}
-
 /// Arguments of `immerse mesh-morph`.
 #[derive(Debug, Args)]
 pub(crate) struct MeshMorphArgs {
@@ -379,11 +327,11 @@ pub(crate) struct MeshMorphArgs {
     /// The target tiling, with the same faces.
     pub(crate) target: PathBuf,
     /// The morph method.
-    #[arg(long, value_enum, default_value_t = MethodArg::Convex)]
-    pub(crate) method: MethodArg,
+    #[arg(long, value_enum, default_value_t = Method::Convex)]
+    pub(crate) method: Method,
     /// Barycentric weights for convex, power and local.
-    #[arg(long, value_enum, default_value_t = WeightsArg::MeanValue)]
-    pub(crate) weights: WeightsArg,
+    #[arg(long, value_enum, default_value_t = Weights::MeanValue)]
+    pub(crate) weights: Weights,
     /// Improve triangle areas in the local method (Surazhsky & Gotsman, Controllable Morphing §4.3).
     #[arg(long)]
     pub(crate) area_improvement: bool,
@@ -459,19 +407,6 @@ pub(crate) struct CheckArgs {
     pub(crate) force: bool,
 }
 
-/// Triangulation quality (see `immerse triangulate --help`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum QualityArg {
-    /// The dynamic program's witness: any valid triangulation (thin).
-    Any,
-    /// The witness improved by immersed Delaunay edge flips.
-    Delaunay,
-    /// The valid triangulation maximising the minimum angle (slower; at
-    /// most 4,000 points and 1.5 billion candidate triangles, about 10 s:
-    /// nearly convex curves past about 2,500 points are refused).
-    Maxmin,
-}
-
 /// Arguments of `immerse triangulate`.
 #[derive(Debug, Args)]
 pub(crate) struct TriangulateArgs {
@@ -486,8 +421,8 @@ pub(crate) struct TriangulateArgs {
     #[arg(long, value_name = "FILE", num_args = 0..=1, require_equals = true, default_missing_value = "-")]
     pub(crate) json: Option<PathBuf>,
     /// Which triangulation to compute.
-    #[arg(long, value_enum, default_value_t = QualityArg::Delaunay)]
-    pub(crate) quality: QualityArg,
+    #[arg(long, value_enum, default_value_t = Quality::Delaunay)]
+    pub(crate) quality: Quality,
     /// Draw the triangulation to a .png or .svg file ("-" is refused: name
     /// a file).
     #[arg(short, long, value_name = "FILE")]
@@ -498,30 +433,6 @@ pub(crate) struct TriangulateArgs {
     /// Replace existing output files (-o, --json=FILE).
     #[arg(long)]
     pub(crate) force: bool,
-}
-
-/// Third-vertex path of the morph. Polar, angle, rotate-slide and linear
-/// are experimental: hidden, and refused unless built with the feature.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum PathArg {
-    /// As rigid as validity allows: each triangle's rotation and stretch interpolated, positions by least squares; parts turn instead of shrinking, spirals wind (guaranteed).
-    Rigid,
-    /// Rotate-slide angles blended just enough to stay an immersion (guaranteed).
-    Hybrid,
-    /// As straight as validity allows: linear where the linear morph is valid; on the last leg it competes with hybrid and polar (guaranteed).
-    Straight,
-    #[cfg_attr(not(feature = "experimental"), value(hide = true))]
-    /// As straight as validity allows along arcs about the centre: spirals wind (guaranteed).
-    Polar,
-    #[cfg_attr(not(feature = "experimental"), value(hide = true))]
-    /// Linear interpolation of triangle angles (guaranteed, more distortion).
-    Angle,
-    #[cfg_attr(not(feature = "experimental"), value(hide = true))]
-    /// The paper's rotate-and-slide path (checked; falls back to hybrid).
-    RotateSlide,
-    #[cfg_attr(not(feature = "experimental"), value(hide = true))]
-    /// Linear base-relative coordinates (checked; falls back to hybrid).
-    Linear,
 }
 
 /// Image or animation format.
@@ -541,49 +452,6 @@ pub(crate) enum FormatArg {
     Lottie,
 }
 
-/// How vertex counts are matched.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum CountsArg {
-    /// Insert vertices on the longest edges; original vertices stay put.
-    Insert,
-    /// Resample both curves evenly by arc length.
-    Resample,
-}
-
-/// The intermediate of incompatible morphs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum IntermediateArg {
-    /// A valid shape that looks like the other curve: overlaps extend instead of unwinding.
-    Target,
-    /// A convex disk with the curve's area (Mukherjee & Gopi's route).
-    Disk,
-}
-
-/// How the vertices of the two curves are matched. Outline, pivot, shape
-/// and identity are experimental: hidden, and refused unless built with
-/// the feature.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub(crate) enum CorrespondenceArg {
-    #[cfg_attr(not(feature = "experimental"), value(hide = true))]
-    /// Match the outlines by arc length up to a rotation and scale; inserted vertices go where the other curve's are.
-    Outline,
-    /// As outline, with the curves' corners (turns of 60° or more, else rounded caps: 160° within 3% of the perimeter) matched in order and the arc between them piece by piece.
-    Corners,
-    /// The cyclic shift with the fewest edge flips between the triangulations.
-    MinFlips,
-    #[cfg_attr(not(feature = "experimental"), value(hide = true))]
-    /// Match the pivot vertices of the two triangulations (Mukherjee & Gopi §6.1).
-    Pivot,
-    #[cfg_attr(not(feature = "experimental"), value(hide = true))]
-    /// The cyclic shift that best matches the shapes themselves.
-    Shape,
-    #[cfg_attr(not(feature = "experimental"), value(hide = true))]
-    /// Vertex 0 matches vertex 0.
-    Identity,
-    /// Plan with the outline, min-flips and (when the corners match up) corners rules; keep the one whose vertices travel less.
-    Best,
-}
-
 /// Arguments of `immerse morph`.
 #[derive(Debug, Args)]
 pub(crate) struct MorphArgs {
@@ -596,27 +464,27 @@ pub(crate) struct MorphArgs {
     pub(crate) frames: u32,
     /// For drawings (files of several shapes): which shape of the source
     /// becomes which of the target (docs/design.md §2b).
-    #[arg(long = "match", value_enum, default_value_t = MatchArg::Auto)]
-    pub(crate) match_mode: MatchArg,
+    #[arg(long = "match", value_enum, default_value_t = MatchMode::Auto)]
+    pub(crate) match_mode: MatchMode,
     /// The path of the motion and the tolerance of its keys.
     #[command(flatten)]
     pub(crate) motion: MotionArgs,
     /// Triangulation quality of each curve.
-    #[arg(long, value_enum, default_value_t = QualityArg::Delaunay)]
-    pub(crate) quality: QualityArg,
+    #[arg(long, value_enum, default_value_t = Quality::Delaunay)]
+    pub(crate) quality: Quality,
     /// How vertex counts are matched.
-    #[arg(long, value_enum, default_value_t = CountsArg::Insert)]
-    pub(crate) counts: CountsArg,
+    #[arg(long, value_enum, default_value_t = Counts::Insert)]
+    pub(crate) counts: Counts,
     /// Where incompatible curves change triangulation on the way.
     ///
     /// When the two curves' triangulations differ, edges are flipped while
     /// the shape moves toward an intermediate: `target` (a valid shape
     /// resembling the other curve) or `disk` (a convex disk).
-    #[arg(long, value_enum, default_value_t = IntermediateArg::Target)]
-    pub(crate) intermediate: IntermediateArg,
+    #[arg(long, value_enum, default_value_t = Intermediate::Target)]
+    pub(crate) intermediate: Intermediate,
     /// How vertices of the two curves are matched.
-    #[arg(long, value_enum, default_value_t = CorrespondenceArg::Best)]
-    pub(crate) correspondence: CorrespondenceArg,
+    #[arg(long, value_enum, default_value_t = Correspondence::Best)]
+    pub(crate) correspondence: Correspondence,
     /// Timing of the frames: linear, ease-in, ease-out, ease-in-out or
     /// cubic-bezier(x1,y1,x2,y2).
     #[arg(long, default_value = "linear")]
@@ -660,8 +528,8 @@ pub(crate) struct MorphArgs {
 #[derive(Debug, Args)]
 pub(crate) struct MotionArgs {
     /// How each triangle's third vertex travels.
-    #[arg(long, value_enum, default_value_t = PathArg::Rigid)]
-    pub(crate) path: PathArg,
+    #[arg(long, value_enum, default_value_t = ThirdVertexPath::Rigid)]
+    pub(crate) path: ThirdVertexPath,
     /// How far the straight segment between two keyframes may stray from
     /// the planned motion, as a fraction of the shape's diagonal (above 0,
     /// at most 0.1); smaller gives more keys.
@@ -878,6 +746,50 @@ mod tests {
         );
     }
 
+    /// The values clap offers are the library's own names, in the order
+    /// of its `ALL`, and exactly the experimental ones are hidden unless
+    /// built with the feature.
+    #[test]
+    fn option_values_are_the_library_names() {
+        fn names<T: ValueEnum>() -> Vec<String> {
+            T::value_variants()
+                .iter()
+                .map(|v| v.to_possible_value().unwrap().get_name().to_string())
+                .collect()
+        }
+        fn same<T: ValueEnum + Copy>(all: &[T], name: fn(T) -> &'static str) {
+            let ours: Vec<&str> = all.iter().map(|&v| name(v)).collect();
+            assert_eq!(names::<T>(), ours);
+        }
+        same(&ThirdVertexPath::ALL, ThirdVertexPath::as_str);
+        same(&Correspondence::ALL, Correspondence::as_str);
+        same(&Quality::ALL, Quality::as_str);
+        same(
+            &[Intermediate::Target, Intermediate::Disk],
+            Intermediate::as_str,
+        );
+        same(&Player::ALL, Player::name);
+        same(&Method::ALL, Method::as_str);
+        same(&Weights::ALL, Weights::as_str);
+        assert_eq!(names::<Counts>(), ["insert", "resample"]);
+        assert_eq!(names::<MatchMode>(), ["id", "order", "auto"]);
+        assert_eq!(names::<SvgShapes>(), ["auto", "shapes", "groups"]);
+        let hidden = |p: Option<clap::builder::PossibleValue>| p.unwrap().is_hide_set();
+        let experimental = |e: bool| e && !cfg!(feature = "experimental");
+        for p in ThirdVertexPath::ALL {
+            assert_eq!(
+                hidden(p.to_possible_value()),
+                experimental(p.is_experimental())
+            );
+        }
+        for c in Correspondence::ALL {
+            assert_eq!(
+                hidden(c.to_possible_value()),
+                experimental(c.is_experimental())
+            );
+        }
+    }
+
     #[test]
     fn morph_defaults_and_size() {
         let cli = Cli::try_parse_from(["immerse", "morph", "a.json", "b.json"]).unwrap();
@@ -885,7 +797,7 @@ mod tests {
             panic!("not morph")
         };
         assert_eq!(m.frames, 60);
-        assert_eq!(m.motion.path, PathArg::Rigid);
+        assert_eq!(m.motion.path, ThirdVertexPath::Rigid);
         assert_eq!(m.image.size, (600, 600));
         assert!(Cli::try_parse_from(["immerse", "morph", "a", "b", "--frames", "1"]).is_err());
         assert_eq!(parse_size("640x480"), Ok((640, 480)));

@@ -8,47 +8,81 @@ use crate::geom::Point;
 use std::f64::consts::PI;
 
 /// How each triangle's third vertex travels from its source to its target
-/// position relative to its base.
+/// position relative to its base. With the `cli` feature it is the command
+/// line's `--path`, variants in its order (each variant's first doc
+/// paragraph is its help there; the experimental paths are hidden, and
+/// refused by [`FromStr`](std::str::FromStr), unless built with the
+/// `experimental` feature).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum ThirdVertexPath {
-    /// Interpolate base-relative coordinates linearly. Not guaranteed: may
-    /// fold the shape on strong deformations (detected, then `hybrid` is
-    /// used instead).
-    Linear,
-    /// Mukherjee & Gopi's rotate-and-slide path (their Fig. 7): keep the
-    /// length of a propagation edge monotone. Not guaranteed either
-    /// (detected, then `hybrid` is used instead).
-    RotateSlide,
-    /// Interpolate every triangle's angles linearly and lay the triangles
-    /// out from them: an immersion for every t, but it distorts more.
-    Angle,
-    /// Rotate-slide angles blended toward the angle rule just enough to
-    /// keep every vertex fan below 2π: an immersion for every t with little
-    /// distortion.
-    Hybrid,
-    /// As straight as validity allows: the end shapes interpolated
-    /// linearly (in a frame turning by their best-fit rotation), projected
-    /// into the valid angle set only where that interpolation is invalid.
-    /// An immersion for every t; where the linear morph is valid, it is the
-    /// linear morph.
-    Straight,
-    /// As straight as validity allows along arcs: like `straight`, but the
-    /// end shapes are interpolated in polar coordinates about their vertex
-    /// means (each vertex's angle, unwound along the curve, and its
-    /// distance), so a spiral winds up along its own turns instead of
-    /// cutting across them. An immersion for every t. The default path
-    /// tries it on the last leg where `hybrid` travels less than
-    /// `straight`, and keeps the one whose vertices travel least.
-    Polar,
-    /// As rigid as validity allows: every triangle's rotation and stretch
-    /// interpolated separately (rotations unwound along the dual tree) and
-    /// the positions fitted to them by least squares (Alexa, Cohen-Or &
-    /// Levin's as-rigid-as-possible interpolation), projected into the
-    /// valid angle set where that is invalid. Parts turn instead of
-    /// shrinking, spirals wind along their turns, and every t gives an
-    /// immersion. The default.
+    /// As rigid as validity allows: each triangle's rotation and stretch
+    /// interpolated, positions by least squares; parts turn instead of
+    /// shrinking, spirals wind (guaranteed).
+    ///
+    /// Every triangle's rotation and stretch interpolated separately
+    /// (rotations unwound along the dual tree) and the positions fitted to
+    /// them by least squares (Alexa, Cohen-Or & Levin's
+    /// as-rigid-as-possible interpolation), projected into the valid angle
+    /// set where that is invalid. Spirals wind along their turns, and every
+    /// t gives an immersion. The default.
     #[default]
     Rigid,
+    /// Rotate-slide angles blended just enough to stay an immersion
+    /// (guaranteed).
+    ///
+    /// Blended toward the angle rule just enough to keep every vertex fan
+    /// below 2π: an immersion for every t with little distortion.
+    Hybrid,
+    /// As straight as validity allows: linear where the linear morph is valid;
+    /// on the last leg it competes with hybrid and polar (guaranteed).
+    ///
+    /// The end shapes interpolated linearly (in a frame turning by their
+    /// best-fit rotation), projected into the valid angle set only where
+    /// that interpolation is invalid: an immersion for every t.
+    Straight,
+    /// As straight as validity allows along arcs about the centre: spirals wind
+    /// (guaranteed).
+    ///
+    /// Like `straight`, but the end shapes are interpolated in polar
+    /// coordinates about their vertex means (each vertex's angle, unwound
+    /// along the curve, and its distance), so a spiral winds up along its
+    /// own turns instead of cutting across them. An immersion for every t.
+    /// The default path tries it on the last leg where `hybrid` travels
+    /// less than `straight`, and keeps the one whose vertices travel least.
+    #[cfg_attr(
+        all(feature = "cli", not(feature = "experimental")),
+        value(hide = true)
+    )]
+    Polar,
+    /// Linear interpolation of triangle angles (guaranteed, more distortion).
+    ///
+    /// The triangles are laid out from their interpolated angles: an
+    /// immersion for every t.
+    #[cfg_attr(
+        all(feature = "cli", not(feature = "experimental")),
+        value(hide = true)
+    )]
+    Angle,
+    /// The paper's rotate-and-slide path (checked; falls back to hybrid).
+    ///
+    /// Mukherjee & Gopi's path (their Fig. 7): keep the length of a
+    /// propagation edge monotone. Not guaranteed: it may fold the shape
+    /// (detected, then `hybrid` is used instead).
+    #[cfg_attr(
+        all(feature = "cli", not(feature = "experimental")),
+        value(hide = true)
+    )]
+    RotateSlide,
+    /// Linear base-relative coordinates (checked; falls back to hybrid).
+    ///
+    /// Not guaranteed either: it may fold the shape on strong deformations
+    /// (detected, then `hybrid` is used instead).
+    #[cfg_attr(
+        all(feature = "cli", not(feature = "experimental")),
+        value(hide = true)
+    )]
+    Linear,
 }
 
 impl ThirdVertexPath {
@@ -97,10 +131,7 @@ impl ThirdVertexPath {
     /// `straight`, and the experimental ones with the `experimental`
     /// feature.
     pub fn offered() -> Vec<ThirdVertexPath> {
-        ThirdVertexPath::ALL
-            .into_iter()
-            .filter(|p| cfg!(feature = "experimental") || !p.is_experimental())
-            .collect()
+        offered(&ThirdVertexPath::ALL, ThirdVertexPath::is_experimental)
     }
 
     /// True for the paths that guarantee an immersion for every t.
@@ -125,26 +156,49 @@ impl std::fmt::Display for ThirdVertexPath {
 impl std::str::FromStr for ThirdVertexPath {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        let offered = ThirdVertexPath::offered();
-        let names: Vec<&str> = offered.iter().map(|p| p.as_str()).collect();
-        match ThirdVertexPath::ALL.into_iter().find(|p| p.as_str() == s) {
-            Some(p) if offered.contains(&p) => Ok(p),
-            Some(p) => Err(experimental("path", p.as_str(), &names)),
-            None => Err(format!("unknown path '{s}'; use {}", names.join(", "))),
-        }
+        parse_offered(
+            "path",
+            s,
+            &ThirdVertexPath::ALL,
+            ThirdVertexPath::as_str,
+            ThirdVertexPath::is_experimental,
+        )
     }
 }
 
-/// The refusal of an experimental option `name` of `what` (a path, a
-/// correspondence) in a build without the `experimental` feature, naming
-/// the values offered instead.
-pub(crate) fn experimental(what: &str, name: &str, offered: &[&str]) -> String {
-    format!(
-        "the {what} '{name}' is experimental: it does worse than {} on the motion measures \
-         (docs/motion-by-option.md); use one of those, or build immerse with \
-         `--features experimental` to keep it",
-        offered.join(", ")
-    )
+/// The values of `all` a user may ask for in this build: the experimental
+/// ones only with the `experimental` feature.
+pub(crate) fn offered<T: Copy>(all: &[T], is_experimental: fn(T) -> bool) -> Vec<T> {
+    all.iter()
+        .copied()
+        .filter(|&v| cfg!(feature = "experimental") || !is_experimental(v))
+        .collect()
+}
+
+/// The value of `all` that `name` calls `s`, if this build offers it
+/// ([`offered`]). An unknown name, or an experimental one in a build
+/// without the `experimental` feature, is refused naming `what` (a path, a
+/// correspondence) and the values offered instead.
+pub(crate) fn parse_offered<T: Copy + PartialEq>(
+    what: &str,
+    s: &str,
+    all: &[T],
+    name: fn(T) -> &'static str,
+    is_experimental: fn(T) -> bool,
+) -> Result<T, String> {
+    let offered = offered(all, is_experimental);
+    let names: Vec<&str> = offered.iter().map(|&v| name(v)).collect();
+    let names = names.join(", ");
+    match all.iter().copied().find(|&v| name(v) == s) {
+        Some(v) if offered.contains(&v) => Ok(v),
+        Some(v) => Err(format!(
+            "the {what} '{}' is experimental: it does worse than {names} on the motion measures \
+             (docs/motion-by-option.md); use one of those, or build immerse with \
+             `--features experimental` to keep it",
+            name(v)
+        )),
+        None => Err(format!("unknown {what} '{s}'; use {names}")),
+    }
 }
 
 /// Base-frame coordinates of `w` relative to the base `x → y`.

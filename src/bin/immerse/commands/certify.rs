@@ -1,12 +1,12 @@
 //! `immerse certify`: is an animation an immersed disk at every moment.
 
 use crate::Outcome;
-use crate::args::{CertifyArgs, PlayerArg};
+use crate::args::CertifyArgs;
 use crate::output;
 use anyhow::Context;
 use immerse::certify::{Answer, SegmentOutcome};
 use immerse::certify::{Format, MAX_ANIMATION_BYTES};
-use immerse::certify::{MotionOptions, Player, certify_animation, read_animation};
+use immerse::certify::{MotionOptions, certify_animation, read_animation};
 use std::io::Read;
 
 /// Failing segments listed in the text report.
@@ -26,14 +26,10 @@ pub(crate) fn run(args: &CertifyArgs) -> anyhow::Result<Outcome> {
     let shown = args.file.display().to_string();
     let bytes = read_bounded(&args.file).with_context(|| format!("cannot read {shown}"))?;
     let anim = read_animation(&bytes, &shown)?;
-    let player = match args.player {
-        PlayerArg::Exact => Player::Exact,
-        PlayerArg::F64 => Player::F64,
-        PlayerArg::F32 => Player::F32,
-    };
     let options = MotionOptions {
         max_pieces: args.max_pieces as usize,
     };
+    let player = args.player;
     let report = certify_animation(&anim, player, options);
     let outcome = if report.answer == Answer::Certified {
         Outcome::Success

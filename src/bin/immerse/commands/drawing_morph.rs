@@ -5,7 +5,7 @@ use super::ImageOutput;
 use super::keyed::{self, Kind, Outline, Written};
 use super::write::Writing;
 use crate::Outcome;
-use crate::args::{FormatArg, MatchArg, MorphArgs};
+use crate::args::{FormatArg, MorphArgs};
 use crate::output;
 use anyhow::Context;
 use immerse::drawing::{
@@ -82,12 +82,7 @@ pub(crate) fn run(
             output::note(n);
         }
     }
-    let mode = match args.match_mode {
-        MatchArg::Id => MatchMode::Id,
-        MatchArg::Order => MatchMode::Order,
-        MatchArg::Auto => MatchMode::Auto,
-    };
-    let matching = match_shapes(&a, &b, mode);
+    let matching = match_shapes(&a, &b, args.match_mode);
     let tween = DrawingTween::new(&a, &b, &matching, options)?;
     let keys = tween.shape_keys()?;
     let times = render::frame_times(args.frames as usize, &easing);

@@ -3,10 +3,9 @@
 use super::plain_points;
 use super::write::{Writing, write_frames};
 use crate::Outcome;
-use crate::args::{MeshMorphArgs, MethodArg, WeightsArg};
+use crate::args::MeshMorphArgs;
 use crate::output;
-use immerse_mesh::coords::Weights;
-use immerse_mesh::mesh_morph::{LinearCheck, MeshMorphOptions, Method, check_linear, mesh_morph};
+use immerse_mesh::mesh_morph::{LinearCheck, MeshMorphOptions, check_linear, mesh_morph};
 use immerse_mesh::tiling::Tiling;
 use immerse_render as render;
 use serde::Serialize;
@@ -99,20 +98,9 @@ pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
             }
         });
     }
-    let method = match args.method {
-        MethodArg::Linear => Method::Linear,
-        MethodArg::Convex => Method::Convex,
-        MethodArg::Intrinsic => Method::Intrinsic,
-        MethodArg::Power => Method::Power,
-        MethodArg::Local => Method::Local,
-    };
-    let weights = match args.weights {
-        WeightsArg::MeanValue => Weights::MeanValue,
-        WeightsArg::Floater => Weights::Floater,
-        WeightsArg::Uniform => Weights::Uniform,
-    };
+    let method = args.method;
     let mut options = MeshMorphOptions::DEFAULT
-        .with_weights(weights)
+        .with_weights(args.weights)
         .with_area_improvement(args.area_improvement);
     if let Some(path) = &args.intermediate {
         options = options.with_intermediate(Some(Tiling::from_path(path)?), 0.5);

@@ -14,9 +14,8 @@ mod triangulate;
 mod write;
 
 use crate::Outcome;
-use crate::args::{Cli, Command, FormatArg, QualityArg};
+use crate::args::{Cli, Command, FormatArg};
 use anyhow::Context;
-use immerse::Quality;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{IsTerminal, Write};
 use std::path::Path;
@@ -32,16 +31,6 @@ pub(crate) fn run(cli: Cli) -> anyhow::Result<Outcome> {
         Command::Animate(args) => animate::run(&args),
         Command::Serve(args) => serve::run(&args),
         Command::Certify(args) => certify::run(&args),
-    }
-}
-
-impl From<QualityArg> for Quality {
-    fn from(q: QualityArg) -> Quality {
-        match q {
-            QualityArg::Any => Quality::Any,
-            QualityArg::Delaunay => Quality::Delaunay,
-            QualityArg::Maxmin => Quality::MaxMin,
-        }
     }
 }
 

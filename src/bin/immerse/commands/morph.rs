@@ -2,7 +2,7 @@
 
 use super::keyed::Played;
 use crate::Outcome;
-use crate::args::{CorrespondenceArg, CountsArg, IntermediateArg, MorphArgs, PathArg, QualityArg};
+use crate::args::MorphArgs;
 use crate::output;
 use anyhow::Context;
 use immerse::frames::{Morph, metrics};
@@ -16,34 +16,6 @@ use std::path::Path;
 
 /// Most vertex positions (frames × points) one morph keeps in memory.
 const MAX_FRAME_POINTS: usize = 50_000_000;
-
-impl From<PathArg> for ThirdVertexPath {
-    fn from(p: PathArg) -> ThirdVertexPath {
-        match p {
-            PathArg::Rigid => ThirdVertexPath::Rigid,
-            PathArg::Hybrid => ThirdVertexPath::Hybrid,
-            PathArg::Straight => ThirdVertexPath::Straight,
-            PathArg::Polar => ThirdVertexPath::Polar,
-            PathArg::Angle => ThirdVertexPath::Angle,
-            PathArg::RotateSlide => ThirdVertexPath::RotateSlide,
-            PathArg::Linear => ThirdVertexPath::Linear,
-        }
-    }
-}
-
-impl From<CorrespondenceArg> for Correspondence {
-    fn from(c: CorrespondenceArg) -> Correspondence {
-        match c {
-            CorrespondenceArg::Shape => Correspondence::Shape,
-            CorrespondenceArg::Outline => Correspondence::Outline,
-            CorrespondenceArg::Corners => Correspondence::Corners,
-            CorrespondenceArg::MinFlips => Correspondence::MinFlips,
-            CorrespondenceArg::Pivot => Correspondence::Pivot,
-            CorrespondenceArg::Identity => Correspondence::Identity,
-            CorrespondenceArg::Best => Correspondence::Best,
-        }
-    }
-}
 
 pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
     let easing: render::Easing = args
@@ -186,9 +158,8 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
             report.flips,
             report.used,
             match args.intermediate {
-                IntermediateArg::Disk =>
-                    format!("u* {:.3}, v* {:.3}", report.u_star, report.v_star),
-                IntermediateArg::Target => {
+                Intermediate::Disk => format!("u* {:.3}, v* {:.3}", report.u_star, report.v_star),
+                Intermediate::Target => {
                     let side = |x: f64| {
                         if x.is_nan() {
                             "not finished".to_string()
@@ -323,11 +294,11 @@ fn write_images(
 /// `animate` and the server.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PlanFlags {
-    pub(crate) path: PathArg,
-    pub(crate) correspondence: CorrespondenceArg,
-    pub(crate) quality: QualityArg,
-    pub(crate) counts: CountsArg,
-    pub(crate) intermediate: IntermediateArg,
+    pub(crate) path: ThirdVertexPath,
+    pub(crate) correspondence: Correspondence,
+    pub(crate) quality: Quality,
+    pub(crate) counts: Counts,
+    pub(crate) intermediate: Intermediate,
     pub(crate) key_tolerance: f64,
 }
 
@@ -335,27 +306,25 @@ impl PlanFlags {
     /// The library options these flags ask for, built in this one place.
     /// A path or correspondence that this build offers only with the
     /// `experimental` feature is refused with the library's own message
-    /// (its parser decides), naming the values offered instead.
+    /// (its parser decides), naming the values offered instead: the
+    /// command line accepts the hidden values so that this message, not
+    /// clap's, answers them.
     pub(crate) fn options(self) -> Result<CurveMorphOptions, String> {
-        let path: ThirdVertexPath = ThirdVertexPath::from(self.path)
+        let path: ThirdVertexPath = self
+            .path
             .as_str()
             .parse()
             .map_err(|e| format!("--path: {e}"))?;
-        let correspondence: Correspondence = Correspondence::from(self.correspondence)
+        let correspondence: Correspondence = self
+            .correspondence
             .as_str()
             .parse()
             .map_err(|e| format!("--correspondence: {e}"))?;
         Ok(CurveMorphOptions::DEFAULT
-            .with_quality(Quality::from(self.quality))
-            .with_counts(match self.counts {
-                CountsArg::Insert => Counts::Insert,
-                CountsArg::Resample => Counts::Resample,
-            })
+            .with_quality(self.quality)
+            .with_counts(self.counts)
             .with_correspondence(correspondence)
-            .with_intermediate(match self.intermediate {
-                IntermediateArg::Target => Intermediate::Target,
-                IntermediateArg::Disk => Intermediate::Disk,
-            })
+            .with_intermediate(self.intermediate)
             .with_morph(MorphOptions::DEFAULT.with_path(path))
             .with_key_tolerance(self.key_tolerance))
     }

@@ -6,7 +6,7 @@ use crate::args::TriangulateArgs;
 use crate::output;
 use anyhow::Context;
 use immerse::triangulate_with_progress;
-use immerse::{Curve, Point, Quality, RootChoice};
+use immerse::{Curve, Point, RootChoice};
 use immerse_render as render;
 use serde::Serialize;
 
@@ -38,7 +38,7 @@ pub(crate) fn run(args: &TriangulateArgs) -> anyhow::Result<Outcome> {
     }
     let json_on_stdout = args.json.as_deref().is_some_and(render::is_stdout);
     let curve = Curve::from_path(&args.curve)?;
-    let quality = Quality::from(args.quality);
+    let quality = args.quality;
     let bar = LateProgress::new("triangulate", json_on_stdout);
     let result = triangulate_with_progress(&curve.points, quality, &mut |f| bar.update(f));
     bar.finish();

@@ -5,7 +5,7 @@
 
 use super::timeline::{KeySpec, Timeline};
 use crate::Outcome;
-use crate::args::{AnimateArgs, FormatArg, MatchArg};
+use crate::args::{AnimateArgs, FormatArg};
 use crate::commands::ImageOutput;
 use crate::commands::drawing_morph::{self, DrawingPlay, render_frame};
 use crate::commands::write::Writing;
@@ -13,7 +13,7 @@ use crate::output;
 use anyhow::Context;
 use immerse::curve::SvgShapes;
 use immerse::drawing::{
-    Drawing, DrawingError, DrawingFrame, DrawingTween, MatchMode, Matching, ShapeKeys, match_shapes,
+    Drawing, DrawingError, DrawingFrame, DrawingTween, Matching, ShapeKeys, match_shapes,
 };
 use immerse::sequence::{Schedule, Timing, schedule_lengths};
 use immerse_render as render;
@@ -140,16 +140,11 @@ pub(super) fn run(
             }
         }
     }
-    let mode = match args.match_mode {
-        MatchArg::Id => MatchMode::Id,
-        MatchArg::Order => MatchMode::Order,
-        MatchArg::Auto => MatchMode::Auto,
-    };
     let options = super::plan_options(args)?;
     let mut matchings = Vec::with_capacity(keys.len() - 1);
     let mut tweens = Vec::with_capacity(keys.len() - 1);
     for (s, w) in keys.windows(2).enumerate() {
-        let m = match_shapes(&w[0].drawing, &w[1].drawing, mode);
+        let m = match_shapes(&w[0].drawing, &w[1].drawing, args.match_mode);
         let tween = DrawingTween::new(&w[0].drawing, &w[1].drawing, &m, &options)
             .with_context(|| format!("{prefix}segment {} → {}", s + 1, s + 2))?;
         matchings.push(m);

@@ -50,7 +50,7 @@ pub(crate) fn run(args: &AnimateArgs) -> anyhow::Result<Outcome> {
     if let Some(fps) = args.fps {
         super::check_fps("--fps", fps)?;
     }
-    let svg_mode = args.svg_keys.map(SvgShapes::from);
+    let svg_mode = args.svg_keys;
     // Where the keys come from, and the prefix of messages about them.
     let (tl, prefix) = match &args.timeline {
         Some(path) => (timeline::read(path)?, format!("{}: ", path.display())),
@@ -234,16 +234,6 @@ fn ease(e: Option<render::Easing>) -> Ease {
     match e {
         None | Some(render::Easing::Linear) => Ease::LINEAR,
         Some(e) => Ease::new(move |x| e.apply(x)),
-    }
-}
-
-impl From<crate::args::SvgKeysArg> for SvgShapes {
-    fn from(a: crate::args::SvgKeysArg) -> SvgShapes {
-        match a {
-            crate::args::SvgKeysArg::Auto => SvgShapes::Auto,
-            crate::args::SvgKeysArg::Shapes => SvgShapes::Shapes,
-            crate::args::SvgKeysArg::Groups => SvgShapes::Groups,
-        }
     }
 }
 
@@ -581,7 +571,7 @@ pub(crate) fn plan_options(args: &AnimateArgs) -> anyhow::Result<CurveMorphOptio
         path: args.motion.path,
         correspondence: args.correspondence,
         quality: args.quality,
-        counts: crate::args::CountsArg::Insert,
+        counts: immerse::morph::Counts::Insert,
         intermediate: args.intermediate,
         key_tolerance: args.motion.key_tolerance,
     }

@@ -4,9 +4,7 @@
 
 use super::http::{self, ApiError, Guard, Phase};
 use super::jobs::{self, Job, JobId, ShapeLimits, Slots, Store, Want};
-use crate::args::{
-    CorrespondenceArg, CountsArg, IntermediateArg, MatchArg, PathArg, QualityArg, ServeLimits,
-};
+use crate::args::ServeLimits;
 use axum::Router;
 use axum::extract::{Path, Request, State as With};
 use axum::http::{Method, StatusCode, Uri};
@@ -17,6 +15,7 @@ use clap::ValueEnum;
 use immerse::curve::{CurveError, Format};
 use immerse::drawing::{Drawing, MatchMode};
 use immerse::geom::polygon;
+use immerse::morph::{Correspondence, Counts, Intermediate, ThirdVertexPath};
 use immerse::{Curve, Quality};
 use immerse_render as render;
 use serde::Deserialize;
@@ -268,12 +267,12 @@ fn options_json(shapes: &ShapeLimits) -> serde_json::Value {
         .map(|l| serde_json::json!({ "name": l.to_string(), "help": null }))
         .collect();
     serde_json::json!({
-        "path": choices(&PathArg::Rigid),
-        "intermediate": choices(&IntermediateArg::Target),
-        "correspondence": choices(&CorrespondenceArg::Best),
-        "quality": choices(&QualityArg::Delaunay),
-        "counts": choices(&CountsArg::Insert),
-        "match": choices(&MatchArg::Auto),
+        "path": choices(&ThirdVertexPath::Rigid),
+        "intermediate": choices(&Intermediate::Target),
+        "correspondence": choices(&Correspondence::Best),
+        "quality": choices(&Quality::Delaunay),
+        "counts": choices(&Counts::Insert),
+        "match": choices(&MatchMode::Auto),
         "easing": { "default": "linear", "values": easings },
         "loop": { "default": render::Loop::Loop.to_string(), "values": loops },
         "frames": { "default": jobs::DEFAULT_FRAMES, "min": 2, "max": shapes.max_frames },

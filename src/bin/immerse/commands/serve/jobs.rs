@@ -13,7 +13,6 @@
 //! ([`JobId`]), so no other page can guess a job's URL.
 
 use super::http::ApiError;
-use crate::args::{CorrespondenceArg, CountsArg, IntermediateArg, MatchArg, PathArg, QualityArg};
 use crate::commands::keyed::{self, Played};
 use bytes::Bytes;
 use clap::ValueEnum;
@@ -23,9 +22,12 @@ use immerse::drawing::{
     ShapeKeys, match_shapes,
 };
 use immerse::frames::{Fallback, Morph};
-use immerse::morph::{CurveMorphError, CurveMorphOptions, Keyframe, ThirdVertexPath, Tween};
+use immerse::morph::{
+    Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, Keyframe,
+    ThirdVertexPath, Tween,
+};
 use immerse::sequence::{Key, Sequence, SequenceError, SequenceOptions};
-use immerse::{Curve, Point};
+use immerse::{Curve, Point, Quality};
 use immerse_render as render;
 use serde::Deserialize;
 use std::collections::{HashMap, VecDeque};
@@ -498,18 +500,18 @@ pub(super) fn plan(req: MorphRequest, limits: &ShapeLimits) -> Result<Plan, ApiE
         .unwrap_or("loop")
         .parse()
         .map_err(|e: render::RenderError| ApiError::bad(format!("\"loop\": {e}")))?;
-    let path: PathArg = value("path", req.path.as_deref(), PathArg::Rigid)?;
-    let quality: QualityArg = value("quality", req.quality.as_deref(), QualityArg::Delaunay)?;
-    let counts: CountsArg = value("counts", req.counts.as_deref(), CountsArg::Insert)?;
-    let intermediate: IntermediateArg = value(
+    let path = value("path", req.path.as_deref(), ThirdVertexPath::Rigid)?;
+    let quality = value("quality", req.quality.as_deref(), Quality::Delaunay)?;
+    let counts = value("counts", req.counts.as_deref(), Counts::Insert)?;
+    let intermediate = value(
         "intermediate",
         req.intermediate.as_deref(),
-        IntermediateArg::Target,
+        Intermediate::Target,
     )?;
-    let correspondence: CorrespondenceArg = value(
+    let correspondence = value(
         "correspondence",
         req.correspondence.as_deref(),
-        CorrespondenceArg::Best,
+        Correspondence::Best,
     )?;
     // The same options as `immerse morph` builds from its arguments.
     let options = crate::commands::morph::PlanFlags {
@@ -524,8 +526,8 @@ pub(super) fn plan(req: MorphRequest, limits: &ShapeLimits) -> Result<Plan, ApiE
     .map_err(|e| ApiError::bad(e.trim_start_matches("--").to_string()))?;
     let input = match req.drawings {
         Some(drawings) => {
-            let mode: MatchArg = value("match", req.match_mode.as_deref(), MatchArg::Auto)?;
-            Input::Drawings(drawings_from(drawings, limits)?, match_mode(mode))
+            let mode = value("match", req.match_mode.as_deref(), MatchMode::Auto)?;
+            Input::Drawings(drawings_from(drawings, limits)?, mode)
         }
         None => Input::Curves(curves_from(req.curves, limits.max_points)?),
     };
@@ -569,15 +571,6 @@ pub(super) fn curves_from(
         out.push(Curve::from_points(&label, points).map_err(|e| ApiError::bad(e.to_string()))?);
     }
     Ok(out)
-}
-
-/// The library's pairing mode for a `--match` value.
-pub(super) fn match_mode(arg: MatchArg) -> MatchMode {
-    match arg {
-        MatchArg::Id => MatchMode::Id,
-        MatchArg::Order => MatchMode::Order,
-        MatchArg::Auto => MatchMode::Auto,
-    }
 }
 
 /// Reads a drawing sent as text (`format` as a curve file's extension:
@@ -796,12 +789,7 @@ pub(super) fn compute(
         f.t = u;
         frames.push(f);
     }
-    let morph = Morph {
-        paths,
-        fallback: !fallbacks.is_empty(),
-        fallbacks,
-        frames,
-    };
+    let morph = Morph::new(paths, fallbacks, frames);
     Ok((morph, seq.keyframes()))
 }
 

@@ -78,7 +78,7 @@ pub struct Compatible {
     polar: std::sync::OnceLock<PolarEnds>,
     /// The rigid path's guide, made on first use (`None` where it cannot
     /// be factored, and the straight guide toward the target stands in).
-    rigid: std::sync::OnceLock<Option<RigidGuide>>,
+    rigid: std::sync::OnceLock<Option<(RigidGuide, [Vec<Point>; 2])>>,
 }
 
 /// The two ends of the polar guide: per vertex, its angle about the
@@ -552,15 +552,32 @@ impl Compatible {
                     [b - a, c - a]
                 })
                 .collect();
-            RigidGuide::new(
+            let guide = RigidGuide::new(
                 &self.src,
                 &self.triangles,
                 &ends,
                 &self.rooted,
                 self.target_frame.0,
-            )
+            )?;
+            // The least-squares solve meets the ends only up to its
+            // rounding, which grows with the conditioning of thin
+            // triangles; what it misses at each end is spread linearly
+            // over t, so that the guide is the source at 0 and the target
+            // at 1 exactly as the path is (else the path would jump onto
+            // its snapped ends).
+            let miss = |at: f64, end: &[Point]| -> Vec<Point> {
+                guide.at(at).iter().zip(end).map(|(g, e)| *e - *g).collect()
+            };
+            let residual = [miss(0.0, &self.src), miss(1.0, &self.dst)];
+            Some((guide, residual))
         });
-        guide.as_ref().map(|g| g.at(t))
+        guide.as_ref().map(|(g, [r0, r1])| {
+            let mut p = g.at(t);
+            for ((p, a), b) in p.iter_mut().zip(r0).zip(r1) {
+                *p += *a * (1.0 - t) + *b * t;
+            }
+            p
+        })
     }
 
     /// The layout factors of the guide `guide` at `t`, projected into the

@@ -176,7 +176,10 @@ pub fn certify_animation(
 
 /// Whether a key's shape is valid: with its triangles when given, else by
 /// the DP.
-fn static_check(points: &[crate::Point], triangles: Option<&[[u32; 3]]>) -> Result<(), String> {
+fn static_check(
+    points: &[crate::geom::Point],
+    triangles: Option<&[[u32; 3]]>,
+) -> Result<(), String> {
     if let Some(t) = triangles
         && check(points, t).is_ok()
     {

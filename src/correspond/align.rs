@@ -619,7 +619,7 @@ mod tests {
     fn the_drawn_ribbons_have_two_rounded_caps() {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("curves");
         for name in ["ribbon-curl.svg", "folded-ribbon.svg"] {
-            let c = crate::Curve::from_path(dir.join(name)).unwrap();
+            let c = crate::curve::Curve::from_path(dir.join(name)).unwrap();
             let at = positions(&c.points);
             assert!(corners(&c.points, &at).is_empty(), "{name}");
             let caps = rounded_corners(&c.points, &at);

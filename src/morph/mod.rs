@@ -125,8 +125,8 @@ impl MorphError {
 /// [`MorphError`] when the pair is not compatible under `triangles`, or
 /// (a bug) when a guaranteed path produced an invalid frame.
 pub fn morph_compatible(
-    src: &[crate::Point],
-    dst: &[crate::Point],
+    src: &[crate::geom::Point],
+    dst: &[crate::geom::Point],
     triangles: &[[u32; 3]],
     times: &[f64],
     options: &MorphOptions,

@@ -187,7 +187,7 @@ impl Tween {
                 crate::morph::Intermediate::Disk => crate::morph::Intermediate::Target,
                 crate::morph::Intermediate::Target => crate::morph::Intermediate::Disk,
             };
-            let maxmin = crate::Quality::MaxMin;
+            let maxmin = crate::quality::Quality::MaxMin;
             let mut retries: Vec<(CurveMorphOptions, String)> = Vec::new();
             if options.quality != maxmin {
                 retries.push((

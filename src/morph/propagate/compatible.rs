@@ -496,8 +496,7 @@ impl Compatible {
                     .map(|i| {
                         if kept[i] {
                             let [x, y, w] = self.corners[i];
-                            let (e, f) = (shape[y] - shape[x], shape[w] - shape[x]);
-                            Point::new(e.dot(f), e.perp_dot(f)) / e.length_squared()
+                            to_base_frame(shape[x], shape[y], shape[w])
                         } else {
                             layout::factor(ang[i])
                         }
@@ -602,10 +601,9 @@ impl Compatible {
         for (i, c) in rule.iter().enumerate() {
             let [x, y, w] = self.corners[i];
             let floor = floor_of(*c);
-            let (e, f) = (guide[y] - guide[x], guide[w] - guide[x]);
-            let l2 = e.length_squared();
-            let z = Point::new(e.dot(f), e.perp_dot(f)) / l2;
-            let z = if l2 > 0.0 && z.is_finite() {
+            // A base of length 0 gives no finite coordinates.
+            let z = to_base_frame(guide[x], guide[y], guide[w]);
+            let z = if z.is_finite() {
                 project_to_floor(z, floor)
             } else {
                 layout::factor(*c)
@@ -754,8 +752,7 @@ impl Compatible {
                 if beta >= 1.0 {
                     return toward_rule;
                 }
-                let (e, f) = (py - px, pw - px);
-                let z = Point::new(e.dot(f), e.perp_dot(f)) / e.length_squared();
+                let z = to_base_frame(px, py, pw);
                 if !z.is_finite() {
                     return toward_rule;
                 }

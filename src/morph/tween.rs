@@ -26,7 +26,7 @@ use crate::geom::Point;
 use crate::immersion::check_triangles;
 use crate::morph::area_and_centroid;
 use crate::morph::plan::{CurveMorphError, CurveMorphOptions, MorphReport, Side, plan};
-use crate::morph::staged::{KEY_AREA_TOLERANCE, Leg, moves, recovery_paths};
+use crate::morph::staged::{KEY_AREA_TOLERANCE, Leg, moves};
 use crate::morph::{Fallback, Frame, Morph};
 use crate::morph::{MorphError, Staged, ThirdVertexPath};
 use std::cell::OnceCell;
@@ -540,7 +540,7 @@ impl Tween {
         let tris = leg.plan.triangles();
         // The animation: every vertex on a straight line between two keys.
         let keys = &leg.keys;
-        let between = |k: usize| -> Vec<Point> {
+        let between = |k: usize, w: f64| -> Vec<Point> {
             let a = &keys[k];
             let Some(b) = keys.get(k + 1) else {
                 return a.clone();
@@ -553,57 +553,86 @@ impl Tween {
                 a.iter().zip(b).map(|(p, q)| p.lerp(*q, w)).collect()
             }
         };
-        let interpolated = between(k);
-        // Frames are checked exactly; where the straight segment fails (a
-        // segment the keys could not certify), the path itself is used.
-        let checked = check_triangles(&interpolated, tris).map(|()| interpolated);
+        let interpolated = between(k, w);
+        // Frames are checked exactly. Where the segment's points fail, in
+        // the rounding of the interpolation or on a segment the keys could
+        // not certify, the nearest point of the same segment that passes
+        // is used if it lies within [`NUDGE_REACH`] of the segment;
+        // otherwise the path itself.
+        let checked = match check_triangles(&interpolated, tris) {
+            Ok(()) => Ok((interpolated, None)),
+            Err(defect) => nudges(w, NUDGE_REACH)
+                .map(|v| (v, between(k, v)))
+                .find(|(_, p)| check_triangles(p, tris).is_ok())
+                .map(|(v, p)| {
+                    let what = format!(
+                        "took the frame at t = {t} from {v} of the way along its segment between two keys instead of {w}"
+                    );
+                    let why = format!("the segment's points there were not an immersion ({defect})");
+                    (p, Some(Fallback::new(&what, &why)))
+                })
+                .ok_or(defect),
+        };
         let (points, fallback) = match checked {
-            Ok(points) => (points, None),
+            Ok(found) => found,
             Err(defect) => {
-                // The segment between the keys is not an immersion here:
-                // the path itself at this t, with the guaranteed paths in
-                // turn.
+                // The segment between the keys is not an immersion here (a
+                // segment the keys could not certify): the path itself at
+                // this t, which keeps within the key tolerance of the
+                // segment; where that fails too, the nearest point of the
+                // segment that passes (its keys do: they are checked
+                // samples). A frame never jumps to another path.
                 let samples = &leg.samples;
-                let s = match samples.get(k + 1) {
-                    Some(&s1) => samples[k] + w * (s1 - samples[k]),
-                    None => samples[k],
-                };
-                let mut first_defect = None;
-                let mut found = None;
-                for path in recovery_paths(leg.path) {
-                    let p = leg.plan.positions(s, path);
-                    match check_triangles(&p, tris) {
-                        Ok(()) => {
-                            found = Some((p, path));
-                            break;
-                        }
-                        Err(e) => {
-                            first_defect.get_or_insert((path, e));
-                        }
+                let span = samples.get(k + 1).map_or(0.0, |&s1| s1 - samples[k]);
+                let why = format!(
+                    "the straight segment between two keys was not an immersion there ({defect})"
+                );
+                // The path at s, or as near it as [`NUDGE_REACH`] of the
+                // segment where the layout's rounding turns a triangle over.
+                let on_path = std::iter::once(w)
+                    .chain(nudges(w, NUDGE_REACH))
+                    .map(|v| {
+                        let p = leg.plan.positions(samples[k] + v * span, leg.path);
+                        check_triangles(&p, tris).map(|()| (v, p))
+                    })
+                    .try_fold(None, |first, r| match r {
+                        Ok(found) => Err(found),
+                        Err(e) => Ok(first.or(Some(e))),
+                    });
+                match on_path {
+                    Err((v, on_path)) => {
+                        let what = format!(
+                            "used the {} path itself for the frame at t = {t}{}",
+                            leg.path,
+                            if v == w {
+                                String::new()
+                            } else {
+                                format!(", {v} of the way along the segment instead of {w}")
+                            }
+                        );
+                        (on_path, Some(Fallback::new(&what, &why)))
+                    }
+                    Ok(e) => {
+                        let e = e.map_or_else(String::new, |e| e.to_string());
+                        let ends = if w < 0.5 { [0.0, 1.0] } else { [1.0, 0.0] };
+                        let Some((v, points)) = nudges(w, 1.0)
+                            .chain(ends)
+                            .map(|v| (v, between(k, v)))
+                            .find(|(_, p)| check_triangles(p, tris).is_ok())
+                        else {
+                            return Err(MorphError::InvalidFrame {
+                                t,
+                                path: leg.path,
+                                defect: e.to_string(),
+                            });
+                        };
+                        let what = format!(
+                            "used the nearest valid point of the segment between two keys for the frame at t = {t} ({v} of the way along it instead of {w})"
+                        );
+                        let why = format!("{why}, nor the {} path ({e})", leg.path);
+                        (points, Some(Fallback::new(&what, &why)))
                     }
                 }
-                let Some((points, path)) = found else {
-                    let (path, e) = first_defect.unwrap_or((leg.path, defect));
-                    return Err(MorphError::InvalidFrame {
-                        t,
-                        path,
-                        defect: e.to_string(),
-                    });
-                };
-                let what = if path == leg.path {
-                    format!("used the {path} path itself for the frame at t = {t}")
-                } else {
-                    format!("used the {path} path for the frame at t = {t}")
-                };
-                let why = match first_defect {
-                    Some((p, e)) => format!(
-                        "the straight segment between two keys was not an immersion there ({defect}), nor the {p} path ({e})"
-                    ),
-                    None => format!(
-                        "the straight segment between two keys was not an immersion there ({defect})"
-                    ),
-                };
-                (points, Some(Fallback::new(&what, &why)))
             }
         };
         let frame = if self.reversed {
@@ -660,6 +689,20 @@ impl Tween {
         }
         Ok(Morph::new(paths, fallbacks, frames))
     }
+}
+
+/// How far along a segment between two keys [`Tween::frame`] looks for a
+/// point that passes the exact check, as a fraction of the segment.
+const NUDGE_REACH: f64 = 1.0 / (1u64 << 20) as f64;
+
+/// The fractions near `w` ∈ [0, 1] to try for a frame, nearest first: at
+/// distances 2⁻⁴⁴, 2⁻⁴², … up to `reach`, on either side, within [0, 1].
+fn nudges(w: f64, reach: f64) -> impl Iterator<Item = f64> {
+    (0..)
+        .map(|i| (-44.0 + 2.0 * f64::from(i)).exp2())
+        .take_while(move |&d| d <= reach)
+        .flat_map(move |d| [w - d, w + d])
+        .filter(|v| (0.0..=1.0).contains(v))
 }
 
 /// The key interval at `d` ∈ [0, last] of the cumulative table `c` and the
@@ -885,6 +928,10 @@ pub fn timed_keyframes(keys: &[Keyframe], times: &[f64], every_frame: bool) -> V
         .collect()
 }
 
+/// How many keys past an uncertified segment [`merge_keys`] looks for a
+/// certified chord over it: a bound on the work.
+const BRIDGE_REACH: usize = 64;
+
 /// Drops the keys of `leg` that a straight segment does not need: greedily
 /// from each kept key, the farthest later key such that the straight
 /// segment to it passes within `tol` of every key in between (each vertex,
@@ -925,7 +972,7 @@ fn merge_keys(leg: &mut Leg, tol: f64) {
             (on_chord - on_area).abs() <= KEY_AREA_TOLERANCE * on_area.abs()
         }
     };
-    let joins = |i: usize, j: usize| -> bool {
+    let joins_for = |i: usize, j: usize, player: crate::certify::Player| -> bool {
         let span = samples[j] - samples[i];
         if span.is_nan() || span <= 0.0 {
             return false;
@@ -941,19 +988,32 @@ fn merge_keys(leg: &mut Leg, tol: f64) {
             near(i, j, 0.5 * (samples[j - 1] + samples[j]), on, *on_area)
         };
         close
-            && crate::certify::certify_segment(
-                &keys[i],
-                &keys[j],
-                &tris,
-                crate::certify::Player::Exact,
-            )
-            .is_ok_and(|r| r.is_certified())
+            && crate::certify::certify_segment(&keys[i], &keys[j], &tris, player)
+                .is_ok_and(|r| r.is_certified())
     };
+    let joins = |i: usize, j: usize| joins_for(i, j, crate::certify::Player::F64);
     let mut kept = vec![0usize];
     let mut i = 0;
     while i + 1 < count {
-        // The farthest j with joins(i, j), j = i + 1 always kept.
-        let (mut good, mut step) = (i + 1, 1usize);
+        // The farthest j with joins(i, j), j = i + 1 always kept. Where
+        // the segment to key i + 1 is not certified (the path's samples
+        // there are closer than its rounding), a longer chord over it is
+        // tried first, at doubling distances up to [`BRIDGE_REACH`] keys:
+        // one certified with the margin of double-precision interpolation,
+        // as frames are computed, since the path there is at the limit of
+        // that rounding.
+        let mut first = i + 1;
+        if !view.certified[i] {
+            let mut reach = 1usize;
+            while reach <= BRIDGE_REACH && i + 1 + reach < count {
+                if joins_for(i, i + 1 + reach, crate::certify::Player::F64) {
+                    first = i + 1 + reach;
+                    break;
+                }
+                reach *= 2;
+            }
+        }
+        let (mut good, mut step) = (first, 1usize);
         let mut bad = count;
         while good + step < count {
             if joins(i, good + step) {

@@ -525,6 +525,21 @@ fn the_rigid_path_is_continuous_where_its_solve_misses_the_ends() {
     continuous_on_stress_pairs(&[403, 750, 1451]);
 }
 
+/// Where a path is at the limit of double-precision rounding (wedges,
+/// glued and thin strips, thin curls), its keys and frames once left it:
+/// a frame whose interpolation the rounding turned over was taken from
+/// another path at that t alone, and a path midpoint that failed the exact
+/// check left its segment uncertified. Now frames keep to their segment
+/// and their path (nudged at most 2⁻²⁰ of the segment), segments are split
+/// elsewhere where the midpoint fails, and merged keys are certified with
+/// the margin of double-precision interpolation. Stress pairs 538, 902,
+/// 918, 1288 and 1965 of seed 0x2026b jumped under one or another of
+/// these and are continuous.
+#[test]
+fn frames_keep_to_their_path_where_its_rounding_turns_thin_triangles_over() {
+    continuous_on_stress_pairs(&[538, 902, 918, 1288, 1965]);
+}
+
 /// Continuity (as [`assert_continuous`]) of the default morph of the
 /// given stress pairs of seed 0x2026b.
 fn continuous_on_stress_pairs(indices: &[u64]) {

@@ -155,6 +155,7 @@ impl Leg {
             certified: Vec::with_capacity(old_samples.len()),
             failed: 0,
             budget: MAX_KEY_SPLITS.saturating_mul(old_samples.len()),
+            cert_budget: MAX_KEY_SPLITS.saturating_mul(old_samples.len()),
         };
         let total_area = area_and_centroid(&old_keys[0], &tris).0.abs();
         for i in 1..old_samples.len() {
@@ -225,14 +226,32 @@ impl Leg {
             crate::certify::certify_segment(a.1, b.1, tris, crate::certify::Player::Exact)
                 .is_ok_and(|r| r.is_certified())
         };
-        if b.0 - a.0 > MIN_KEY_STEP && out.budget > 0 {
-            let sm = 0.5 * (a.0 + b.0);
-            let pm = self.plan.positions(sm, self.path);
-            if check_triangles(&pm, tris).is_ok() {
-                let strays = pm
-                    .iter()
-                    .zip(a.1.iter().zip(b.1))
-                    .any(|(m, (p, q))| (*m - (*p + *q) * 0.5).length() > tol);
+        // Following the path closely (position and area) and certifying
+        // the segment draw on separate budgets, so that a stretch the path
+        // is hard to follow on (a strip thinner than its moves) cannot use
+        // up the splits another stretch needs to be certified.
+        let follow = out.budget > 0;
+        if b.0 - a.0 > MIN_KEY_STEP && (follow || out.cert_budget > 0) {
+            if !follow && certified() {
+                out.certified.push(true);
+                out.samples.push(b.0);
+                out.keys.push(b.1.to_vec());
+                return;
+            }
+            // The path's midpoint, or where that fails the exact check (a
+            // thin triangle turned over in the layout's rounding), another
+            // point of the path inside the segment.
+            let inside = SPLIT_AT.iter().find_map(|&f| {
+                let sm = a.0 + f * (b.0 - a.0);
+                let pm = self.plan.positions(sm, self.path);
+                check_triangles(&pm, tris).is_ok().then_some((sm, pm))
+            });
+            if let Some((sm, pm)) = inside {
+                let strays = || {
+                    pm.iter()
+                        .zip(a.1.iter().zip(b.1))
+                        .any(|(m, (p, q))| (*m - (*p + *q) * 0.5).length() > tol)
+                };
                 // The straight segment also keeps the path's total area
                 // (a thin strip turning can lose much of its area along a
                 // chord that keeps within `tol`).
@@ -245,8 +264,24 @@ impl Leg {
                     );
                     (on_chord - on_path).abs() > KEY_AREA_TOLERANCE * on_path.abs()
                 };
-                if strays || shrinks() || !certified() {
+                let split = if follow && (strays() || shrinks()) {
                     out.budget -= 1;
+                    true
+                } else if !follow || !certified() {
+                    // (Without the follow budget, the segment was found
+                    // uncertified above.)
+                    if out.cert_budget == 0 {
+                        out.certified.push(false);
+                        out.samples.push(b.0);
+                        out.keys.push(b.1.to_vec());
+                        return;
+                    }
+                    out.cert_budget -= 1;
+                    true
+                } else {
+                    false
+                };
+                if split {
                     self.split(a, (sm, &pm), tris, tol, out);
                     self.split((sm, &pm), b, tris, tol, out);
                     return;
@@ -311,8 +346,10 @@ struct KeyOut {
     certified: Vec<bool>,
     /// Path midpoints that failed the exact check.
     failed: usize,
-    /// Splits left.
+    /// Splits left to follow the path (position and area).
     budget: usize,
+    /// Splits left to certify segments.
+    cert_budget: usize,
 }
 
 /// How much the total area of a straight segment's midpoint may differ
@@ -323,6 +360,11 @@ pub(crate) const KEY_AREA_TOLERANCE: f64 = 0.01;
 /// work and the keys where a path cannot be followed closely (a segment
 /// left unsplit is still checked at every frame).
 const MAX_KEY_SPLITS: usize = 64;
+
+/// Where [`Leg::split`] splits a segment, in order of preference: its
+/// midpoint, then other points where the path's midpoint fails the exact
+/// check.
+const SPLIT_AT: [f64; 7] = [0.5, 0.25, 0.75, 0.375, 0.625, 0.125, 0.875];
 
 /// Finest split of a segment between keys, in the leg's own parameter.
 const MIN_KEY_STEP: f64 = 1.0 / (1u64 << 44) as f64;

@@ -598,6 +598,10 @@ impl Compatible {
             .collect();
         let mut factors = Vec::with_capacity(m);
         let mut ang = Vec::with_capacity(m);
+        // Angles are estimated ([`estimate_angles`]) and measured only
+        // where a fan could reach its cap, so the result is what measuring
+        // every one gives.
+        let mut rough = vec![false; m];
         for (i, c) in rule.iter().enumerate() {
             let [x, y, w] = self.corners[i];
             let floor = floor_of(*c);
@@ -609,13 +613,21 @@ impl Compatible {
                 layout::factor(*c)
             };
             factors.push(z);
-            ang.push(factor_angles(z));
+            match estimate_angles(z.y, z.x, 1.0 - z.x) {
+                Some(est) if z.y >= 0.0 => {
+                    rough[i] = true;
+                    ang.push(est);
+                }
+                _ => ang.push(factor_angles(z)),
+            }
         }
         let n = self.src.len();
         let s_c = layout::fan_sums(n, &self.corners, &rule);
         let cap = |v: usize| TAU - self.fan_margin.min((TAU - s_c[v]) / 2.0);
+        let measured: Vec<Point> = factors.clone();
+        let measure = |i: usize| factor_angles(measured[i]);
         // Local: each over-full vertex blends its own fan.
-        let s = layout::fan_sums(n, &self.corners, &ang);
+        let s = settle_fans(&self.corners, n, &mut ang, &mut rough, &cap, &measure);
         let local = self.local_blends(&s, &s_c, cap);
         for (i, a) in ang.iter_mut().enumerate() {
             if local[i] > 0.0 {
@@ -624,10 +636,18 @@ impl Compatible {
             }
         }
         // Global: whatever the local step could not settle.
-        let s = layout::fan_sums(n, &self.corners, &ang);
+        let s = settle_fans(&self.corners, n, &mut ang, &mut rough, &cap, &measure);
         let lambda = layout::fan_blend(&s, &s_c, cap);
         if lambda > 0.0 {
-            for ((a, c), f) in ang.iter_mut().zip(&rule).zip(factors.iter_mut()) {
+            for (i, ((a, c), f)) in ang
+                .iter_mut()
+                .zip(&rule)
+                .zip(factors.iter_mut())
+                .enumerate()
+            {
+                if rough[i] {
+                    *a = measure(i);
+                }
                 *a = lerp3(*a, *c, lambda);
                 *f = layout::factor(*a);
             }
@@ -767,32 +787,8 @@ impl Compatible {
         let n = self.src.len();
         let s_c = layout::fan_sums(n, &self.corners, &rule);
         let cap = |v: usize| TAU - self.fan_margin.min((TAU - s_c[v]) / 2.0);
-        // Fan sums, exact (as if every triangle were measured) at every
-        // vertex whose fan could reach its cap; elsewhere they are below it.
-        let settle = |ang: &mut [[f64; 3]], rough: &mut [bool]| -> Vec<f64> {
-            let s = layout::fan_sums(n, &self.corners, ang);
-            let mut slack = vec![0.0; n];
-            for (i, c) in self.corners.iter().enumerate() {
-                if rough[i] {
-                    c.iter().for_each(|&v| slack[v] += ESTIMATE_SLACK);
-                }
-            }
-            let unsure: Vec<bool> = (0..n)
-                .map(|v| slack[v] > 0.0 && (s[v] + slack[v] >= cap(v) || s[v].is_nan()))
-                .collect();
-            let mut changed = false;
-            for (i, c) in self.corners.iter().enumerate() {
-                if rough[i] && c.iter().any(|&v| unsure[v]) {
-                    ang[i] = measure(i);
-                    rough[i] = false;
-                    changed = true;
-                }
-            }
-            if changed {
-                layout::fan_sums(n, &self.corners, ang)
-            } else {
-                s
-            }
+        let settle = |ang: &mut [[f64; 3]], rough: &mut [bool]| {
+            settle_fans(&self.corners, n, ang, rough, &cap, &measure)
         };
         // Local: each over-full vertex blends its own fan.
         let s = settle(&mut ang, &mut rough);
@@ -996,6 +992,44 @@ fn project_to_floor(z: Point, floor: f64) -> Point {
 /// Largest error of [`estimate_atan`] (radians), with room to spare: the
 /// polynomial of Abramowitz & Stegun 4.4.49 is within 1e-5.
 const ATAN_ERROR: f64 = 2e-5;
+
+/// Fan sums of the angles `ang` at the `n` vertices, exact (as if every
+/// triangle were measured with `measure`) at every vertex whose fan could
+/// reach its `cap`; elsewhere they are below it. Triangles marked `rough`
+/// hold estimates ([`estimate_angles`]); those at a vertex that could reach
+/// its cap are measured and unmarked.
+fn settle_fans(
+    corners: &[[usize; 3]],
+    n: usize,
+    ang: &mut [[f64; 3]],
+    rough: &mut [bool],
+    cap: &impl Fn(usize) -> f64,
+    measure: &impl Fn(usize) -> [f64; 3],
+) -> Vec<f64> {
+    let s = layout::fan_sums(n, corners, ang);
+    let mut slack = vec![0.0; n];
+    for (i, c) in corners.iter().enumerate() {
+        if rough[i] {
+            c.iter().for_each(|&v| slack[v] += ESTIMATE_SLACK);
+        }
+    }
+    let unsure: Vec<bool> = (0..n)
+        .map(|v| slack[v] > 0.0 && (s[v] + slack[v] >= cap(v) || s[v].is_nan()))
+        .collect();
+    let mut changed = false;
+    for (i, c) in corners.iter().enumerate() {
+        if rough[i] && c.iter().any(|&v| unsure[v]) {
+            ang[i] = measure(i);
+            rough[i] = false;
+            changed = true;
+        }
+    }
+    if changed {
+        layout::fan_sums(n, corners, ang)
+    } else {
+        s
+    }
+}
 
 /// Largest error of one corner of [`estimate_angles`]: the third angle, π
 /// less the other two, carries both their errors.

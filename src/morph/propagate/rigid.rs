@@ -195,12 +195,22 @@ impl RigidGuide {
             // each triangle's area and its principal stretches move
             // monotonically between the ends' (never ballooning past both).
             let ([cc, ss, cs], [l1, l2]) = e.stretch;
-            let (e1, e2) = ((t * l1).exp(), (t * l2).exp());
+            // (At t = 0, as at the start of every leg, exp and sin_cos give
+            // exactly 1 and (0, 1): skipped.)
+            let (e1, e2) = if t == 0.0 {
+                (1.0, 1.0)
+            } else {
+                ((t * l1).exp(), (t * l2).exp())
+            };
             let m = [
                 [e1 * cc + e2 * ss, (e1 - e2) * cs],
                 [(e1 - e2) * cs, e1 * ss + e2 * cc],
             ];
-            let (si, co) = (t * e.theta).sin_cos();
+            let (si, co) = if t == 0.0 {
+                (0.0, 1.0)
+            } else {
+                (t * e.theta).sin_cos()
+            };
             let a = [
                 [co * m[0][0] - si * m[1][0], co * m[0][1] - si * m[1][1]],
                 [si * m[0][0] + co * m[1][0], si * m[0][1] + co * m[1][1]],
@@ -317,7 +327,13 @@ fn factor(n: usize, elements: &[Element], rooted: &Rooted) -> Option<(Vec<Step>,
         eliminated[v] = true;
         let corners = &elements[t].corners;
         let edge = |a: usize, b: usize| ids[t][slot(corners, a, b)];
-        let others: Vec<usize> = corners.iter().copied().filter(|&u| u != v).collect();
+        // The ear's two other corners, in corner order (v is one of its
+        // three).
+        let others = match corners.iter().position(|&u| u == v) {
+            Some(0) => [corners[1], corners[2]],
+            Some(1) => [corners[0], corners[2]],
+            _ => [corners[0], corners[1]],
+        };
         let pivot = diag[v];
         if !(pivot > 0.0 && pivot.is_finite()) {
             return None;

@@ -53,6 +53,10 @@ pub struct Keyframe {
 /// ([`Tween::new`]): the gate of docs/design.md §7c.
 const KEPT_TURNING: f64 = 0.9;
 
+/// The largest detour the defaults allow on any pair (docs/design.md
+/// §7b): a plan raced in for its unwind ([`Tween::new`]) must keep to it.
+const DETOUR_GATE: f64 = 3.0;
+
 /// How much farther the straight morph's vertices may travel than the
 /// rigid one's for it to be kept instead ([`Tween::new`]).
 const RACE_TRAVEL: f64 = 1.5;
@@ -105,6 +109,36 @@ impl Tween {
         options: &CurveMorphOptions,
     ) -> Result<Tween, CurveMorphError> {
         options.validate()?;
+        let tween = Self::raced(a, b, options)?;
+        // The best correspondence keeps the plan whose vertices travel
+        // least. Where that plan still undoes the overlaps both curves
+        // have, the min-flips rule is planned too (it matches corners by
+        // the flips they need, so a corner more often keeps its sense) and
+        // kept on the same terms as the straight path below.
+        // It must not trade the unwind for a detour past its gate, which
+        // the first plan keeps.
+        if options.correspondence == crate::morph::Correspondence::Best
+            && tween.key_unwind() < KEPT_TURNING
+        {
+            let min_flips = options.with_correspondence(crate::morph::Correspondence::MinFlips);
+            if let Ok(other) = Self::raced(a, b, &min_flips)
+                && other.key_unwind() >= KEPT_TURNING
+                && other.staged.mean_travel() <= RACE_TRAVEL * tween.staged.mean_travel()
+                && (other.key_detour() <= DETOUR_GATE || tween.key_detour() > DETOUR_GATE)
+            {
+                return Ok(other);
+            }
+        }
+        Ok(tween)
+    }
+
+    /// Plans the morph with the options given and, for the rigid path,
+    /// races the straight path against it where it unwinds.
+    fn raced(
+        a: &[Point],
+        b: &[Point],
+        options: &CurveMorphOptions,
+    ) -> Result<Tween, CurveMorphError> {
         let tween = Self::planned(a, b, options)?;
         // The rigid path interpolates each triangle's rotation, so a corner
         // that turns one way on one curve and the other way on the other
@@ -128,6 +162,20 @@ impl Tween {
             }
         }
         Ok(tween)
+    }
+
+    /// The detour of §7b on the keys (the polyline every frame lies on).
+    fn key_detour(&self) -> f64 {
+        let frames: Vec<Frame> = self
+            .keyframes()
+            .into_iter()
+            .map(|k| Frame {
+                t: k.t,
+                points: k.points,
+                triangles: k.triangles,
+            })
+            .collect();
+        crate::frames::detour(&frames)
     }
 
     /// The least total absolute turning over the keys of the side used

@@ -362,22 +362,21 @@ fn motion_meets_its_goal_on_the_motion_pairs() {
     assert!(g >= 0.5, "median angle ratio {g:.2}");
 }
 
-/// The same gates on `curves/reference-pairs.list`. Two pairs keep less
-/// than 0.9 of their turning, and are named with the floor they keep: a
-/// letter E's inner corners against a star's points, where every path
-/// straightens corners on the way (the best keeps 0.83), and an annulus
-/// sector against a curl that coils past itself, where only a path
-/// detouring 5× keeps 0.9 (docs/motion.md).
+/// The same gates on `curves/reference-pairs.list`. One pair keeps less
+/// than 0.9 of its turning, and is named with the floor it keeps: an
+/// annulus sector against a curl that coils past itself, where only plans
+/// detouring past 3 keep 0.9 (docs/motion.md). A letter E against a
+/// 5-point star kept 0.80 with the correspondence that travels least (the
+/// E's inner corners turn against the star's points, and every path
+/// straightens them on the way); the min-flips correspondence, raced in
+/// where the kept plan unwinds, keeps 0.92.
 #[test]
 fn motion_meets_its_goal_on_the_reference_pairs() {
-    let known: [(&str, &str, f64); 2] = [
-        ("letter-E.json", "star-5-points.json", 0.78),
-        (
-            "annulus-sector-300deg-n40.json",
-            "curl-strip-n10.json",
-            0.87,
-        ),
-    ];
+    let known: [(&str, &str, f64); 1] = [(
+        "annulus-sector-300deg-n40.json",
+        "curl-strip-n10.json",
+        0.87,
+    )];
     let stride = if cfg!(debug_assertions) { 4 } else { 1 };
     let mut detours = Vec::new();
     for (a, b) in reference_pairs().into_iter().step_by(stride) {

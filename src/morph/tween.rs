@@ -115,8 +115,9 @@ impl Tween {
         // have, the min-flips rule is planned too (it matches corners by
         // the flips they need, so a corner more often keeps its sense) and
         // kept on the same terms as the straight path below.
-        // It must not trade the unwind for a detour past its gate, which
-        // the first plan keeps.
+        // It must not trade the unwind for a detour past its gate, or for
+        // segments its keys cannot certify (where frames come from the
+        // path itself), which the first plan keeps.
         if options.correspondence == crate::morph::Correspondence::Best
             && tween.key_unwind() < KEPT_TURNING
         {
@@ -125,6 +126,7 @@ impl Tween {
                 && other.key_unwind() >= KEPT_TURNING
                 && other.staged.mean_travel() <= RACE_TRAVEL * tween.staged.mean_travel()
                 && (other.key_detour() <= DETOUR_GATE || tween.key_detour() > DETOUR_GATE)
+                && (other.is_certified() || !tween.is_certified())
             {
                 return Ok(other);
             }

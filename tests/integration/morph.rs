@@ -539,6 +539,16 @@ fn frames_keep_to_their_path_where_its_rounding_turns_thin_triangles_over() {
     continuous_on_stress_pairs(&[538, 902, 918, 1288, 1965]);
 }
 
+/// The min-flips correspondence is raced in where the plan kept unwinds,
+/// but only where its keys are certified wherever the first plan's are:
+/// on stress pair 1135 of seed 0x2026b (thin spiral → thin spiral) it
+/// keeps the turning but leaves segments uncertified, and the morph
+/// jumped there.
+#[test]
+fn the_correspondence_race_keeps_the_motion_continuous() {
+    continuous_on_stress_pairs(&[1135]);
+}
+
 /// Continuity (as [`assert_continuous`]) of the default morph of the
 /// given stress pairs of seed 0x2026b.
 fn continuous_on_stress_pairs(indices: &[u64]) {

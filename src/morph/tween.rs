@@ -109,7 +109,7 @@ impl Tween {
         options: &CurveMorphOptions,
     ) -> Result<Tween, CurveMorphError> {
         options.validate()?;
-        let tween = Self::raced(a, b, options)?;
+        let (tween, unwind) = Self::raced(a, b, options)?;
         // The best correspondence keeps the plan whose vertices travel
         // least. Where that plan still undoes the overlaps both curves
         // have, the min-flips rule is planned too (it matches corners by
@@ -118,12 +118,10 @@ impl Tween {
         // It must not trade the unwind for a detour past its gate, or for
         // segments its keys cannot certify (where frames come from the
         // path itself), which the first plan keeps.
-        if options.correspondence == crate::morph::Correspondence::Best
-            && tween.key_unwind() < KEPT_TURNING
-        {
+        if options.correspondence == crate::morph::Correspondence::Best && unwind < KEPT_TURNING {
             let min_flips = options.with_correspondence(crate::morph::Correspondence::MinFlips);
-            if let Ok(other) = Self::raced(a, b, &min_flips)
-                && other.key_unwind() >= KEPT_TURNING
+            if let Ok((other, other_unwind)) = Self::raced(a, b, &min_flips)
+                && other_unwind >= KEPT_TURNING
                 && other.staged.mean_travel() <= RACE_TRAVEL * tween.staged.mean_travel()
                 && (other.key_detour() <= DETOUR_GATE || tween.key_detour() > DETOUR_GATE)
                 && (other.is_certified() || !tween.is_certified())
@@ -135,13 +133,15 @@ impl Tween {
     }
 
     /// Plans the morph with the options given and, for the rigid path,
-    /// races the straight path against it where it unwinds.
+    /// races the straight path against it where it unwinds; with the
+    /// [`Tween::key_unwind`] of the morph kept.
     fn raced(
         a: &[Point],
         b: &[Point],
         options: &CurveMorphOptions,
-    ) -> Result<Tween, CurveMorphError> {
+    ) -> Result<(Tween, f64), CurveMorphError> {
         let tween = Self::planned(a, b, options)?;
+        let unwind = tween.key_unwind();
         // The rigid path interpolates each triangle's rotation, so a corner
         // that turns one way on one curve and the other way on the other
         // passes through straight; where that undoes the overlaps both
@@ -150,20 +150,18 @@ impl Tween {
         // if it keeps that turning without its vertices travelling more
         // than RACE_TRAVEL times as far. One choice per morph: the motion
         // stays continuous.
-        if options.morph.path == ThirdVertexPath::Rigid {
-            let unwind = tween.key_unwind();
-            if unwind < KEPT_TURNING {
-                let straight =
-                    options.with_morph(options.morph.with_path(ThirdVertexPath::Straight));
-                if let Ok(other) = Self::planned(a, b, &straight)
-                    && other.key_unwind() >= KEPT_TURNING
+        if options.morph.path == ThirdVertexPath::Rigid && unwind < KEPT_TURNING {
+            let straight = options.with_morph(options.morph.with_path(ThirdVertexPath::Straight));
+            if let Ok(other) = Self::planned(a, b, &straight) {
+                let other_unwind = other.key_unwind();
+                if other_unwind >= KEPT_TURNING
                     && other.staged.mean_travel() <= RACE_TRAVEL * tween.staged.mean_travel()
                 {
-                    return Ok(other);
+                    return Ok((other, other_unwind));
                 }
             }
         }
-        Ok(tween)
+        Ok((tween, unwind))
     }
 
     /// The detour of §7b on the keys (the polyline every frame lies on).

@@ -1072,15 +1072,16 @@ fn estimate_angles(cross: f64, dot_x: f64, dot_y: f64) -> Option<[f64; 3]> {
 /// rescaled to sum π; `None` when the triangle is not strictly CCW.
 fn corner_angles(p: &[Point], [x, y, w]: [usize; 3]) -> Option<[f64; 3]> {
     let (px, py, pw) = (p[x], p[y], p[w]);
-    if !crate::geom::orient(px, py, pw).is_ccw() {
+    // One cross product for all three corners, from the exact predicate's
+    // adaptive determinant (accurate where the floating-point one cancels;
+    // its sign is the exact orientation): a thin triangle's small angles
+    // then keep their true ratio, which fixes where its third vertex lies
+    // along its base.
+    let coord = |q: Point| robust::Coord { x: q.x, y: q.y };
+    let cross = robust::orient2d(coord(px), coord(py), coord(pw));
+    if cross.is_nan() || cross <= 0.0 {
         return None;
     }
-    // One cross product for all three corners, from the exact predicate's
-    // adaptive determinant (accurate where the floating-point one cancels):
-    // a thin triangle's small angles then keep their true ratio, which
-    // fixes where its third vertex lies along its base.
-    let coord = |q: Point| robust::Coord { x: q.x, y: q.y };
-    let cross = robust::orient2d(coord(px), coord(py), coord(pw)).abs();
     let at = |a: Point, b: Point, c: Point| cross.atan2((b - a).dot(c - a));
     let a = [at(px, py, pw), at(py, pw, px), at(pw, px, py)];
     let s = a[0] + a[1] + a[2];

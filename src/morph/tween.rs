@@ -609,9 +609,7 @@ impl Tween {
         // otherwise the path itself.
         let checked = match check_triangles(&interpolated, tris) {
             Ok(()) => Ok((interpolated, None)),
-            Err(defect) => nudges(w, NUDGE_REACH)
-                .map(|v| (v, between(k, v)))
-                .find(|(_, p)| check_triangles(p, tris).is_ok())
+            Err(defect) => first_passing(nudges(w, NUDGE_REACH), tris, |v| between(k, v))
                 .map(|(v, p)| {
                     let what = format!(
                         "took the frame at t = {t} from {v} of the way along its segment between two keys instead of {w}"
@@ -619,7 +617,7 @@ impl Tween {
                     let why = format!("the segment's points there were not an immersion ({defect})");
                     (p, Some(Fallback::new(&what, &why)))
                 })
-                .ok_or(defect),
+                .map_err(|_| defect),
         };
         let (points, fallback) = match checked {
             Ok(found) => found,
@@ -637,18 +635,13 @@ impl Tween {
                 );
                 // The path at s, or as near it as [`NUDGE_REACH`] of the
                 // segment where the layout's rounding turns a triangle over.
-                let on_path = std::iter::once(w)
-                    .chain(nudges(w, NUDGE_REACH))
-                    .map(|v| {
-                        let p = leg.plan.positions(samples[k] + v * span, leg.path);
-                        check_triangles(&p, tris).map(|()| (v, p))
-                    })
-                    .try_fold(None, |first, r| match r {
-                        Ok(found) => Err(found),
-                        Err(e) => Ok(first.or(Some(e))),
-                    });
+                let on_path = first_passing(
+                    std::iter::once(w).chain(nudges(w, NUDGE_REACH)),
+                    tris,
+                    |v| leg.plan.positions(samples[k] + v * span, leg.path),
+                );
                 match on_path {
-                    Err((v, on_path)) => {
+                    Ok((v, on_path)) => {
                         let what = format!(
                             "used the {} path itself for the frame at t = {t}{}",
                             leg.path,
@@ -660,18 +653,16 @@ impl Tween {
                         );
                         (on_path, Some(Fallback::new(&what, &why)))
                     }
-                    Ok(e) => {
+                    Err(e) => {
                         let e = e.map_or_else(String::new, |e| e.to_string());
                         let ends = if w < 0.5 { [0.0, 1.0] } else { [1.0, 0.0] };
-                        let Some((v, points)) = nudges(w, 1.0)
-                            .chain(ends)
-                            .map(|v| (v, between(k, v)))
-                            .find(|(_, p)| check_triangles(p, tris).is_ok())
+                        let Ok((v, points)) =
+                            first_passing(nudges(w, 1.0).chain(ends), tris, |v| between(k, v))
                         else {
                             return Err(MorphError::InvalidFrame {
                                 t,
                                 path: leg.path,
-                                defect: e.to_string(),
+                                defect: e,
                             });
                         };
                         let what = format!(
@@ -751,6 +742,27 @@ fn nudges(w: f64, reach: f64) -> impl Iterator<Item = f64> {
         .take_while(move |&d| d <= reach)
         .flat_map(move |d| [w - d, w + d])
         .filter(|v| (0.0..=1.0).contains(v))
+}
+
+/// The first of the fractions `fractions` whose points `at(v)` pass the
+/// exact check on `tris`, with the fraction; else the first defect met
+/// (`None` when there was no fraction to try).
+fn first_passing(
+    fractions: impl Iterator<Item = f64>,
+    tris: &[[u32; 3]],
+    at: impl Fn(f64) -> Vec<Point>,
+) -> Result<(f64, Vec<Point>), Option<crate::immersion::ImmersionDefect>> {
+    let mut first = None;
+    for v in fractions {
+        let p = at(v);
+        match check_triangles(&p, tris) {
+            Ok(()) => return Ok((v, p)),
+            Err(e) => {
+                first.get_or_insert(e);
+            }
+        }
+    }
+    Err(first)
 }
 
 /// The key interval at `d` ∈ [0, last] of the cumulative table `c` and the
@@ -984,8 +996,9 @@ const BRIDGE_REACH: usize = 64;
 /// from each kept key, the farthest later key such that the straight
 /// segment to it passes within `tol` of every key in between (each vertex,
 /// at its own parameter along the leg), keeps their total area within
-/// [`KEY_AREA_TOLERANCE`], and is certified an immersion for every s in
-/// exact arithmetic (docs/design.md §13). So a straight-line morph keeps
+/// [`KEY_AREA_TOLERANCE`], and is certified an immersion for every s with
+/// the margin of double-precision interpolation, as frames are computed
+/// (docs/design.md §13). So a straight-line morph keeps
 /// its two ends. Farther keys are tried at doubling distances, then by
 /// bisection: O(k log k) segment checks for k keys.
 fn merge_keys(leg: &mut Leg, tol: f64) {
@@ -1020,7 +1033,7 @@ fn merge_keys(leg: &mut Leg, tol: f64) {
             (on_chord - on_area).abs() <= KEY_AREA_TOLERANCE * on_area.abs()
         }
     };
-    let joins_for = |i: usize, j: usize, player: crate::certify::Player| -> bool {
+    let joins = |i: usize, j: usize| -> bool {
         let span = samples[j] - samples[i];
         if span.is_nan() || span <= 0.0 {
             return false;
@@ -1036,25 +1049,26 @@ fn merge_keys(leg: &mut Leg, tol: f64) {
             near(i, j, 0.5 * (samples[j - 1] + samples[j]), on, *on_area)
         };
         close
-            && crate::certify::certify_segment(&keys[i], &keys[j], &tris, player)
-                .is_ok_and(|r| r.is_certified())
+            && crate::certify::certify_segment(
+                &keys[i],
+                &keys[j],
+                &tris,
+                crate::certify::Player::F64,
+            )
+            .is_ok_and(|r| r.is_certified())
     };
-    let joins = |i: usize, j: usize| joins_for(i, j, crate::certify::Player::F64);
     let mut kept = vec![0usize];
     let mut i = 0;
     while i + 1 < count {
         // The farthest j with joins(i, j), j = i + 1 always kept. Where
         // the segment to key i + 1 is not certified (the path's samples
         // there are closer than its rounding), a longer chord over it is
-        // tried first, at doubling distances up to [`BRIDGE_REACH`] keys:
-        // one certified with the margin of double-precision interpolation,
-        // as frames are computed, since the path there is at the limit of
-        // that rounding.
+        // tried first, at doubling distances up to [`BRIDGE_REACH`] keys.
         let mut first = i + 1;
         if !view.certified[i] {
             let mut reach = 1usize;
             while reach <= BRIDGE_REACH && i + 1 + reach < count {
-                if joins_for(i, i + 1 + reach, crate::certify::Player::F64) {
+                if joins(i, i + 1 + reach) {
                     first = i + 1 + reach;
                     break;
                 }

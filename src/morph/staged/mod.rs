@@ -183,9 +183,7 @@ impl Leg {
                 && crate::certify::certify_segment(a.1, b.1, &tris, crate::certify::Player::Exact)
                     .is_ok_and(|r| r.is_certified())
             {
-                out.certified.push(true);
-                out.samples.push(b.0);
-                out.keys.push(b.1.to_vec());
+                out.push(b, true);
                 continue;
             }
             self.split(a, b, &tris, tol, &mut out);
@@ -233,9 +231,7 @@ impl Leg {
         let follow = out.budget > 0;
         if b.0 - a.0 > MIN_KEY_STEP && (follow || out.cert_budget > 0) {
             if !follow && certified() {
-                out.certified.push(true);
-                out.samples.push(b.0);
-                out.keys.push(b.1.to_vec());
+                out.push(b, true);
                 return;
             }
             // The path's midpoint, or where that fails the exact check (a
@@ -271,9 +267,7 @@ impl Leg {
                     // (Without the follow budget, the segment was found
                     // uncertified above.)
                     if out.cert_budget == 0 {
-                        out.certified.push(false);
-                        out.samples.push(b.0);
-                        out.keys.push(b.1.to_vec());
+                        out.push(b, false);
                         return;
                     }
                     out.cert_budget -= 1;
@@ -286,16 +280,12 @@ impl Leg {
                     self.split((sm, &pm), b, tris, tol, out);
                     return;
                 }
-                out.certified.push(true);
-                out.samples.push(b.0);
-                out.keys.push(b.1.to_vec());
+                out.push(b, true);
                 return;
             }
             out.failed += 1;
         }
-        out.certified.push(certified());
-        out.samples.push(b.0);
-        out.keys.push(b.1.to_vec());
+        out.push(b, certified());
     }
 }
 
@@ -350,6 +340,16 @@ struct KeyOut {
     budget: usize,
     /// Splits left to certify segments.
     cert_budget: usize,
+}
+
+impl KeyOut {
+    /// Appends the key `b` (parameter, shape), ending a segment that is
+    /// `certified` or not.
+    fn push(&mut self, b: (f64, &[Point]), certified: bool) {
+        self.certified.push(certified);
+        self.samples.push(b.0);
+        self.keys.push(b.1.to_vec());
+    }
 }
 
 /// How much the total area of a straight segment's midpoint may differ

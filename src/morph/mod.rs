@@ -169,7 +169,10 @@ pub fn morph_with(
         }
         match build(p) {
             // Every path before the k-th failed and left a fallback.
-            Ok(frames) => return Ok(Morph::new(vec![p], fallbacks, frames)),
+            Ok(frames) => {
+                fallbacks.extend(staged::guide_fallback(plan, p, "the morph"));
+                return Ok(Morph::new(vec![p], fallbacks, frames));
+            }
             Err((t, defect)) => {
                 fallbacks.push(Fallback::new(
                     &format!("did not use the {p} path"),

@@ -540,7 +540,9 @@ impl Compatible {
     /// heads for the target even on a leg whose straight guide heads
     /// elsewhere ([`Compatible::with_guide`]): the target is valid under
     /// this triangulation, where the other curve may not be. `None` where
-    /// the system cannot be factored.
+    /// the system cannot be factored, or its solve cannot be made accurate
+    /// ([`RigidGuide::at_checked`]) at the ends or half way: its rounding
+    /// would then change from one t to the next and shake every frame.
     fn rigid_guide(&self, t: f64) -> Option<Vec<Point>> {
         let guide = self.rigid.get_or_init(|| {
             let ends: Vec<[Point; 2]> = self
@@ -564,10 +566,15 @@ impl Compatible {
             // over t, so that the guide is the source at 0 and the target
             // at 1 exactly as the path is (else the path would jump onto
             // its snapped ends).
-            let miss = |at: f64, end: &[Point]| -> Vec<Point> {
-                guide.at(at).iter().zip(end).map(|(g, e)| *e - *g).collect()
+            let (start, a) = guide.at_checked(0.0);
+            let (end, b) = guide.at_checked(1.0);
+            if !(a && b && guide.at_checked(0.5).1) {
+                return None;
+            }
+            let miss = |at: Vec<Point>, end: &[Point]| -> Vec<Point> {
+                at.iter().zip(end).map(|(g, e)| *e - *g).collect()
             };
-            let residual = [miss(0.0, &self.src), miss(1.0, &self.dst)];
+            let residual = [miss(start, &self.src), miss(end, &self.dst)];
             Some((guide, residual))
         });
         guide.as_ref().map(|(g, [r0, r1])| {
@@ -577,6 +584,13 @@ impl Compatible {
             }
             p
         })
+    }
+
+    /// False where the `rigid` path, once evaluated, was guided by the
+    /// straight guide: the as-rigid-as-possible one could not be factored
+    /// or solved accurately ([`Compatible::rigid_guide`]).
+    pub(crate) fn has_rigid_guide(&self) -> bool {
+        !matches!(self.rigid.get(), Some(None))
     }
 
     /// The layout factors of the guide `guide` at `t`, projected into the

@@ -22,6 +22,15 @@
 //! interior vertex) always has an ear, a vertex in one triangle, whose two
 //! neighbours are adjacent, so eliminating ears one by one creates no
 //! fill-in. The matrix is factored once.
+//!
+//! Thin triangles far apart in size make the matrix so ill-conditioned
+//! that one solve in double precision is accurate to a few digits only, and
+//! its rounding changes from one t to the next: the guide, and every frame
+//! laid out from it, would shake. Where the elimination cancels much of a
+//! diagonal entry, the solve is refined with residuals taken per triangle
+//! ([`RigidGuide::at_checked`]); a guide whose refinement cannot reach
+//! 10⁻⁶ of its extent is not used (the straight guide stands in, and the
+//! morph's report says so).
 
 use crate::geom::Point;
 use crate::tree::Rooted;
@@ -65,7 +74,31 @@ pub(crate) struct RigidGuide {
     pinned: usize,
     means: [Point; 2],
     n: usize,
+    /// Whether [`RigidGuide::at`] refines its solve: the elimination
+    /// cancelled more than [`REFINE_GROWTH`] of some diagonal entry.
+    refined: bool,
 }
+
+/// The cancellation (assembled diagonal entry ÷ its pivot) beyond which
+/// the solve is refined. The solve's relative error grows about as this
+/// ratio times the f64 epsilon, and it varies from one t to the next, not
+/// smoothly: thin triangles far apart in size (ratios of 10¹⁰ and more in
+/// the stress generators) would make the guide, and every frame laid out
+/// from it, shake.
+const REFINE_GROWTH: f64 = 1e4;
+
+/// The refinement stops once its correction is at most this fraction of
+/// the guide's extent, or once it stops halving (it has reached the
+/// rounding of the residual), or after [`REFINE_STEPS`].
+const REFINE_TOLERANCE: f64 = 1e-9;
+
+/// The solve is accurate where the last correction was at most this
+/// fraction of the guide's extent: the guide then moves by no more than
+/// about this much between one t and the next beyond its own motion.
+const REFINE_ACCEPT: f64 = 1e-6;
+
+/// The most refinement steps of one solve.
+const REFINE_STEPS: usize = 24;
 
 impl RigidGuide {
     /// The interpolation from `src` to the end whose triangle `i` has edge
@@ -175,13 +208,14 @@ impl RigidGuide {
         if turns != 0.0 {
             raw.iter_mut().for_each(|e| e.theta -= turns * TAU);
         }
-        let (steps, pinned) = factor(n, &raw, rooted)?;
+        let (steps, pinned, growth) = factor(n, &raw, rooted)?;
         Some(RigidGuide {
             elements: raw,
             steps,
             pinned,
             means,
             n,
+            refined: growth > REFINE_GROWTH,
         })
     }
 
@@ -189,7 +223,21 @@ impl RigidGuide {
     /// moved so that their vertex mean is the ends' means interpolated
     /// linearly.
     pub(crate) fn at(&self, t: f64) -> Vec<Point> {
+        self.at_checked(t).0
+    }
+
+    /// [`RigidGuide::at`], and whether its solve is accurate to
+    /// [`REFINE_ACCEPT`] of the guide's extent. Where the elimination
+    /// cancels much ([`REFINE_GROWTH`]), the solve is refined (as in
+    /// Björck's corrected semi-normal equations): the residual is taken
+    /// per triangle, as the difference between its map A(t) and the map of
+    /// the positions found, so that it does not carry the rounding of the
+    /// assembled matrix, and the correction it asks for is solved with
+    /// the same factors, until the correction is below
+    /// [`REFINE_TOLERANCE`] or stops halving.
+    pub(crate) fn at_checked(&self, t: f64) -> (Vec<Point>, bool) {
         let mut b = vec![Point::ZERO; self.n];
+        let mut maps = Vec::with_capacity(if self.refined { self.elements.len() } else { 0 });
         for e in &self.elements {
             // A(t) = R(tθ) S^t: the stretch interpolated geometrically, so
             // each triangle's area and its principal stretches move
@@ -215,20 +263,69 @@ impl RigidGuide {
                 [co * m[0][0] - si * m[1][0], co * m[0][1] - si * m[1][1]],
                 [si * m[0][0] + co * m[1][0], si * m[0][1] + co * m[1][1]],
             ];
-            // Right-hand side: w K Aᵣᵀ for each coordinate row r.
-            for (k, &v) in e.corners.iter().enumerate() {
-                let g = e.wk[k];
-                b[v].x += g[0] * a[0][0] + g[1] * a[0][1];
-                b[v].y += g[0] * a[1][0] + g[1] * a[1][1];
+            add_rows(&mut b, e, a);
+            if self.refined {
+                maps.push(a);
             }
         }
         let mut x = solve(&self.steps, self.pinned, b);
+        let mut converged = true;
+        if self.refined {
+            let (lo, hi) = x.iter().fold(
+                (Point::splat(f64::INFINITY), Point::splat(f64::NEG_INFINITY)),
+                |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+            );
+            let extent = (hi - lo).length();
+            let mut last = f64::INFINITY;
+            for _ in 0..REFINE_STEPS {
+                let mut r = vec![Point::ZERO; self.n];
+                for (e, a) in self.elements.iter().zip(&maps) {
+                    add_rows(&mut r, e, misfit(e, a, &x));
+                }
+                let dx = solve(&self.steps, self.pinned, r);
+                let step = dx.iter().map(|d| d.length()).fold(0.0, f64::max);
+                x.iter_mut().zip(&dx).for_each(|(p, d)| *p += *d);
+                // A correction that does not halve the one before has
+                // reached the rounding of the residual itself.
+                let stalled = step > 0.5 * last;
+                last = step;
+                if step <= REFINE_TOLERANCE * extent || stalled {
+                    break;
+                }
+            }
+            converged = last <= REFINE_ACCEPT * extent;
+        }
         let n = self.n as f64;
         let mean = x.iter().copied().sum::<Point>() / n;
         let goal = self.means[0].lerp(self.means[1], t);
         x.iter_mut().for_each(|p| *p += goal - mean);
-        x
+        (x, converged)
     }
+}
+
+/// Adds triangle `e`'s rows of the right-hand side for the map `a`:
+/// w K Aᵣᵀ for each coordinate row r.
+fn add_rows(b: &mut [Point], e: &Element, a: [[f64; 2]; 2]) {
+    for (k, &v) in e.corners.iter().enumerate() {
+        let g = e.wk[k];
+        b[v].x += g[0] * a[0][0] + g[1] * a[0][1];
+        b[v].y += g[0] * a[1][0] + g[1] * a[1][1];
+    }
+}
+
+/// The map `a` less the map J of triangle `e` on the positions `x`,
+/// J = Σₖ xₖ Kₖᵀ taken from the edge vectors out of its first corner (the
+/// rows of K sum to zero), so that it does not carry the positions'
+/// magnitude.
+fn misfit(e: &Element, a: &[[f64; 2]; 2], x: &[Point]) -> [[f64; 2]; 2] {
+    let [c0, c1, c2] = e.corners;
+    let (d1, d2) = (x[c1] - x[c0], x[c2] - x[c0]);
+    let (k1, k2) = (e.wk[1], e.wk[2]);
+    let j = |d1: f64, d2: f64, col: usize| (d1 * k1[col] + d2 * k2[col]) / e.area;
+    [
+        [a[0][0] - j(d1.x, d2.x, 0), a[0][1] - j(d1.x, d2.x, 1)],
+        [a[1][0] - j(d1.y, d2.y, 0), a[1][1] - j(d1.y, d2.y, 1)],
+    ]
 }
 
 /// The three corner pairs of a triangle, in the order of its edge slots.
@@ -275,7 +372,7 @@ fn edge_ids(elements: &[Element], rooted: &Rooted) -> (Vec<[usize; 3]>, usize) {
 /// an edge of the ear's triangle), holding one vertex of the last
 /// triangle at zero. Returns the steps and the held vertex; `None` when a
 /// pivot is not positive in floating point.
-fn factor(n: usize, elements: &[Element], rooted: &Rooted) -> Option<(Vec<Step>, usize)> {
+fn factor(n: usize, elements: &[Element], rooted: &Rooted) -> Option<(Vec<Step>, usize, f64)> {
     let mut diag = vec![0.0; n];
     let (ids, edges) = edge_ids(elements, rooted);
     let mut off = vec![0.0; edges];
@@ -309,6 +406,10 @@ fn factor(n: usize, elements: &[Element], rooted: &Rooted) -> Option<(Vec<Step>,
     // The vertex held at zero: a corner of some triangle; it is never
     // eliminated.
     let pinned = elements.first().map_or(0, |e| e.corners[0]);
+    // Each diagonal entry as assembled, to measure how much of it the
+    // elimination cancels ([`Factored::growth`]).
+    let assembled = diag.clone();
+    let mut growth: f64 = 1.0;
     let mut alive = vec![true; elements.len()];
     let mut ears: Vec<usize> = (0..n).filter(|&v| count[v] == 1 && v != pinned).collect();
     let mut eliminated = vec![false; n];
@@ -338,6 +439,7 @@ fn factor(n: usize, elements: &[Element], rooted: &Rooted) -> Option<(Vec<Step>,
         if !(pivot > 0.0 && pivot.is_finite()) {
             return None;
         }
+        growth = growth.max(assembled[v] / pivot);
         let mut next = [(0usize, 0.0f64); 2];
         let mut k = 0;
         for &u in &others {
@@ -378,6 +480,7 @@ fn factor(n: usize, elements: &[Element], rooted: &Rooted) -> Option<(Vec<Step>,
         if !(pivot > 0.0 && pivot.is_finite()) {
             return None;
         }
+        growth = growth.max(assembled[v] / pivot);
         eliminated[v] = true;
         steps.push(Step {
             v,
@@ -386,7 +489,7 @@ fn factor(n: usize, elements: &[Element], rooted: &Rooted) -> Option<(Vec<Step>,
             count: 0,
         });
     }
-    Some((steps, pinned))
+    Some((steps, pinned, growth))
 }
 
 /// Solves the factored system for the right-hand side `b` (both
@@ -495,5 +598,76 @@ mod tests {
                 (lo.min(x), hi.max(x))
             });
         assert!(spread.1 - spread.0 > 1.5 * PI, "{spread:?}");
+    }
+
+    /// A strip whose width falls from 0.1 to 10⁻⁹ along its length, curled
+    /// a quarter turn, to a strip of width 0.1 curled one and a quarter
+    /// turns: its elimination cancels all but a tiny fraction of some
+    /// diagonal entries. Solved once, the guide's rounding changes from
+    /// one t to the next (its positions at t and t + 10⁻¹² differ by more
+    /// than 10⁻⁴ of its extent, where the motion in between is about
+    /// 10⁻¹²); refined, by less than 10⁻⁶.
+    #[test]
+    fn the_refined_solve_moves_smoothly_where_the_elimination_cancels() {
+        const FALL: f64 = 1e-8;
+        let strip = |turns: f64, fall: f64| {
+            let m = 40;
+            let station = |i: usize| {
+                let th = turns * TAU * i as f64 / (m - 1) as f64;
+                let width = 0.1 * fall.powf(i as f64 / (m - 1) as f64);
+                (Point::from_angle(th), 1.0 + 0.12 * th / TAU, width)
+            };
+            let mut pts: Vec<Point> = (0..m)
+                .map(|i| {
+                    let (u, r, w) = station(i);
+                    u * (r + w / 2.0)
+                })
+                .collect();
+            pts.extend((0..m).rev().map(|i| {
+                let (u, r, w) = station(i);
+                u * (r - w / 2.0)
+            }));
+            let n = 2 * m as u32;
+            let tris: Vec<[u32; 3]> = (0..(m as u32 - 1))
+                .flat_map(|i| [[i, i + 1, n - 1 - i], [i + 1, n - 2 - i, n - 1 - i]])
+                .collect();
+            (pts, tris)
+        };
+        let (a, tris) = strip(0.25, FALL);
+        let (b, _) = strip(1.25, 1.0);
+        let tree = DualTree::new(a.len(), &tris).unwrap();
+        let rooted = tree.rooted(0);
+        let refined =
+            RigidGuide::new(&a, &tris, &edges(&b, &tris), &rooted, [mean(&a), mean(&b)]).unwrap();
+        assert!(refined.refined);
+        let once = RigidGuide {
+            refined: false,
+            ..refined.clone()
+        };
+        // The largest move between t and t + 10⁻¹² over a few t, as a
+        // fraction of the guide's extent.
+        let shake = |g: &RigidGuide| {
+            let mut worst: f64 = 0.0;
+            for k in 1..20 {
+                let t = k as f64 / 20.0;
+                let (p, converged) = g.at_checked(t);
+                assert!(converged, "t {t}");
+                let q = g.at(t + 1e-12);
+                let (lo, hi) = p.iter().fold(
+                    (Point::splat(f64::INFINITY), Point::splat(f64::NEG_INFINITY)),
+                    |(lo, hi), x| (lo.min(*x), hi.max(*x)),
+                );
+                let d = p
+                    .iter()
+                    .zip(&q)
+                    .map(|(x, y)| x.distance(*y))
+                    .fold(0.0, f64::max);
+                worst = worst.max(d / (hi - lo).length());
+            }
+            worst
+        };
+        let (smooth, rough) = (shake(&refined), shake(&once));
+        assert!(smooth < 1e-6, "refined: {smooth:e}");
+        assert!(rough > 1e-4, "solved once: {rough:e}");
     }
 }

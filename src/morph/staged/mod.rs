@@ -716,6 +716,11 @@ impl Staged {
             return Ok(None);
         };
         st.legs.push(last);
+        for (k, leg) in st.legs.iter().enumerate() {
+            if let Some(f) = guide_fallback(&leg.plan, leg.path, &format!("leg {}", k + 1)) {
+                st.fallbacks.push(f);
+            }
+        }
         Ok(Some(st))
     }
 
@@ -952,6 +957,23 @@ fn last_leg(
             defect: why,
         }),
     }
+}
+
+/// The report that `path` on `plan`, for `what` (e.g. "leg 2"), was
+/// guided by the straight guide instead of the as-rigid-as-possible one
+/// ([`Compatible::has_rigid_guide`]).
+pub(crate) fn guide_fallback(
+    plan: &Compatible,
+    path: ThirdVertexPath,
+    what: &str,
+) -> Option<Fallback> {
+    (path == ThirdVertexPath::Rigid && !plan.has_rigid_guide()).then(|| {
+        Fallback::new(
+            &format!("guided the rigid path of {what} by the straight guide"),
+            "the as-rigid-as-possible system cannot be solved accurately in double precision \
+             here (thin triangles far apart in size); its rounding would shake the frames",
+        )
+    })
 }
 
 /// How sampling a leg ended.

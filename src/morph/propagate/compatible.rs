@@ -568,7 +568,9 @@ impl Compatible {
             // its snapped ends).
             let (start, a) = guide.at_checked(0.0);
             let (end, b) = guide.at_checked(1.0);
-            if !(a && b && guide.at_checked(0.5).1) {
+            // (Half way only where the solve is refined: elsewhere it is
+            // accurate at every t.)
+            if !(a && b && (!guide.refines() || guide.at_checked(0.5).1)) {
                 return None;
             }
             let miss = |at: Vec<Point>, end: &[Point]| -> Vec<Point> {
@@ -952,7 +954,15 @@ fn project_to_floor(z: Point, floor: f64) -> Point {
     if floor.is_nan() || floor <= 0.0 {
         return z;
     }
-    let (c, s) = (floor.cos(), floor.sin());
+    // Most triangles' floor is the default (their rule's angles are not
+    // thin): its cosine and sine are taken once.
+    static DEFAULT: std::sync::LazyLock<(f64, f64)> =
+        std::sync::LazyLock::new(|| (STRAIGHT_MIN_ANGLE.cos(), STRAIGHT_MIN_ANGLE.sin()));
+    let (c, s) = if floor == STRAIGHT_MIN_ANGLE {
+        *DEFAULT
+    } else {
+        (floor.cos(), floor.sin())
+    };
     let centre = Point::new(0.5, 0.5 * c / s);
     let radius = 0.5 / s;
     let left = c * z.y - s * z.x >= 0.0;

@@ -226,6 +226,12 @@ impl RigidGuide {
         self.at_checked(t).0
     }
 
+    /// Whether the solve is refined ([`RigidGuide::at_checked`]); where it
+    /// is not, every solve is accurate.
+    pub(crate) fn refines(&self) -> bool {
+        self.refined
+    }
+
     /// [`RigidGuide::at`], and whether its solve is accurate to
     /// [`REFINE_ACCEPT`] of the guide's extent. Where the elimination
     /// cancels much ([`REFINE_GROWTH`]), the solve is refined (as in

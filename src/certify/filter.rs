@@ -141,6 +141,19 @@ impl Edge {
         }
     }
 
+    /// The part of the edge's motion on `[l, r]` of the segment, as an
+    /// edge moving linearly from its vector at `l` to its vector at `r`
+    /// (bounds included).
+    fn on(&self, l: f64, r: f64) -> Edge {
+        let at = |a: Fe, b: Fe, s: f64| a.add(Fe::exact(s).mul(b.sub(a)));
+        Edge {
+            x0: at(self.x0, self.x1, l),
+            y0: at(self.y0, self.y1, l),
+            x1: at(self.x0, self.x1, r),
+            y1: at(self.y0, self.y1, r),
+        }
+    }
+
     /// An upper bound of the larger 1-norm at the two ends.
     fn norm1(&self) -> f64 {
         let n0 = (self.x0.v.abs() + self.x0.e) + (self.y0.v.abs() + self.y0.e);
@@ -196,9 +209,13 @@ fn margin(u: &Edge, w: &Edge, du: f64, dw: f64) -> Fe {
 pub(crate) fn triangle(p: &[Point], q: &[Point], [a, b, c]: [usize; 3], delta: &[f64]) -> bool {
     let e1 = Edge::new(p, q, a, b);
     let e2 = Edge::new(p, q, a, c);
-    let area = cross_bern(&e1, &e2);
-    let m = margin(&e1, &e2, delta[a] + delta[b], delta[a] + delta[c]);
-    area.minus(m).positive()
+    triangle_on(&e1, &e2, delta[a] + delta[b], delta[a] + delta[c])
+}
+
+/// The triangle test on the edges `e1`, `e2` out of its first corner,
+/// with their displacement bounds.
+fn triangle_on(e1: &Edge, e2: &Edge, d1: f64, d2: f64) -> bool {
+    cross_bern(e1, e2).minus(margin(e1, e2, d1, d2)).positive()
 }
 
 /// Surely: the fan at `v` never comes near a full turn on [0, 1] (its
@@ -209,12 +226,79 @@ pub(crate) fn fan(p: &[Point], q: &[Point], v: usize, delta: &[f64]) -> bool {
     let (next, prev) = ((v + 1) % n, (v + n - 1) % n);
     let a = Edge::new(p, q, v, next);
     let b = Edge::new(p, q, v, prev);
-    let k = margin(&a, &b, delta[v] + delta[next], delta[v] + delta[prev]);
-    let c = cross_bern(&a, &b);
+    fan_on(&a, &b, delta[v] + delta[next], delta[v] + delta[prev])
+}
+
+/// The fan test on its first and last edges `a`, `b`, with their
+/// displacement bounds.
+fn fan_on(a: &Edge, b: &Edge, da: f64, db: f64) -> bool {
+    let k = margin(a, b, da, db);
+    let c = cross_bern(a, b);
     // |cross| > k throughout, or dot < −k throughout.
-    c.minus(k).positive()
-        || c.neg().minus(k).positive()
-        || dot_bern(&a, &b).neg().minus(k).positive()
+    c.minus(k).positive() || c.neg().minus(k).positive() || dot_bern(a, b).neg().minus(k).positive()
+}
+
+/// Most pieces [`triangle_in_pieces`] and [`fan_in_pieces`] try.
+const PIECES: usize = 256;
+
+/// [`triangle`] on `[s0, s1]` cut in pieces, each with the margin of its
+/// own ends (at most [`PIECES`], halving where a piece is undecided).
+/// The margin of a whole segment takes each edge's larger norm at its
+/// ends, which overstates it where an edge shrinks in the middle; on a
+/// piece the norms at its own ends bound the edge there. True: every
+/// piece surely keeps `2·area > M`, so the span does.
+pub(crate) fn triangle_in_pieces(
+    p: &[Point],
+    q: &[Point],
+    [a, b, c]: [usize; 3],
+    delta: &[f64],
+    [s0, s1]: [f64; 2],
+) -> bool {
+    let e1 = Edge::new(p, q, a, b);
+    let e2 = Edge::new(p, q, a, c);
+    let (d1, d2) = (delta[a] + delta[b], delta[a] + delta[c]);
+    in_pieces(s0, s1, |l, r| {
+        triangle_on(&e1.on(l, r), &e2.on(l, r), d1, d2)
+    })
+}
+
+/// [`fan`] on `[s0, s1]` cut in pieces, as [`triangle_in_pieces`].
+pub(crate) fn fan_in_pieces(
+    p: &[Point],
+    q: &[Point],
+    v: usize,
+    delta: &[f64],
+    [s0, s1]: [f64; 2],
+) -> bool {
+    let n = p.len();
+    let (next, prev) = ((v + 1) % n, (v + n - 1) % n);
+    let a = Edge::new(p, q, v, next);
+    let b = Edge::new(p, q, v, prev);
+    let (da, db) = (delta[v] + delta[next], delta[v] + delta[prev]);
+    in_pieces(s0, s1, |l, r| fan_on(&a.on(l, r), &b.on(l, r), da, db))
+}
+
+/// Whether `test` holds on every piece of `[s0, s1]`, halving undecided
+/// pieces, with at most [`PIECES`] tested.
+fn in_pieces(s0: f64, s1: f64, test: impl Fn(f64, f64) -> bool) -> bool {
+    let mut todo = vec![(s0, s1)];
+    let mut tested = 0;
+    while let Some((l, r)) = todo.pop() {
+        if tested == PIECES {
+            return false;
+        }
+        tested += 1;
+        if test(l, r) {
+            continue;
+        }
+        let m = 0.5 * (l + r);
+        if !(l < m && m < r) {
+            return false;
+        }
+        todo.push((m, r));
+        todo.push((l, m));
+    }
+    true
 }
 
 /// Upper bounds of the vertex displacement bounds δ_v = 2^shift · m_v

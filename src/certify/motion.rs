@@ -126,6 +126,10 @@ pub fn certify_motion(
         return report;
     }
     let mut s = 0.0f64;
+    // The triangulation found just after the last failure: it may hold
+    // from before the failure on, through the moment where the last one
+    // degenerated.
+    let mut beyond: Option<Vec<[u32; 3]>> = None;
     loop {
         if report.pieces.len() >= options.max_pieces.max(1) {
             report.verdict = Verdict::Undecided {
@@ -147,6 +151,11 @@ pub fn certify_motion(
             .map(|(i, t)| (t.to_vec(), Source::Given(i)))
             .collect();
         let mut triangulate_now = candidates.is_empty() || !report.pieces.is_empty();
+        if let Some(t) = beyond.take()
+            && valid_at_unchecked(start, end, &t, s).is_ok()
+        {
+            candidates.push((t, Source::Triangulated));
+        }
         let mut best: Option<(Vec<[u32; 3]>, Source, Option<Failure>)> = None;
         loop {
             if triangulate_now {
@@ -223,15 +232,19 @@ pub fn certify_motion(
             && failure.at.lo > s
         {
             report.triangulations += 1;
-            if let Err(Some(())) = triangulate_at(start, end, after) {
-                report.pieces.push(Piece {
-                    from: s,
-                    to: failure.at.lo,
-                    source,
-                    triangles,
-                });
-                report.verdict = Verdict::Invalid { at: after };
-                return report;
+            match triangulate_at(start, end, after) {
+                Err(Some(())) => {
+                    report.pieces.push(Piece {
+                        from: s,
+                        to: failure.at.lo,
+                        source,
+                        triangles,
+                    });
+                    report.verdict = Verdict::Invalid { at: after };
+                    return report;
+                }
+                Ok(t) => beyond = Some(t),
+                Err(None) => {}
             }
         }
         // Triangulate again a little before the failure.

@@ -772,7 +772,7 @@ fn bad_input_is_an_error_not_a_panic() {
 
 /// Interpolation as a player in f32 does it: coordinates read into f32,
 /// `p + s (q − p)` or `(1 − s) p + s q`.
-fn f32_player(p: &[Point], qp: &[Point], s: f32, form: bool) -> Vec<Point> {
+pub(crate) fn f32_player(p: &[Point], qp: &[Point], s: f32, form: bool) -> Vec<Point> {
     p.iter()
         .zip(qp)
         .map(|(a, b)| {

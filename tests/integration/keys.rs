@@ -195,3 +195,41 @@ fn written_files_certify_as_written() {
     }
     eprintln!("refused: {refused:?}");
 }
+
+/// Where a vertex's two boundary edges shrink to a few hundredths of a
+/// pixel inside a segment and grow again (ribbon curl → folded ribbon,
+/// keys 8 → 9 of its Lottie file), the f32 player's margin taken from the
+/// edges' lengths at the segment's ends is a hundred times too large, and
+/// the Lottie file was refused at every precision. The margin is now taken
+/// piece by piece (docs/design.md §13): the file is written, `immerse
+/// certify` certifies it for an f32 player, and what an f32 player draws
+/// between its keys is self-overlapping (decided by the DP, sharing no
+/// code with the certificate).
+#[test]
+fn the_f32_margin_is_taken_piece_by_piece_where_edges_shrink_inside_a_segment() {
+    let dir = tempfile::tempdir().unwrap();
+    let lottie = dir.path().join("curl-fold.lottie.json");
+    let o = immerse(&[
+        "morph",
+        curve("ribbon-curl.svg").to_str().unwrap(),
+        curve("folded-ribbon.svg").to_str().unwrap(),
+        "-o",
+        lottie.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = immerse(&["certify", lottie.to_str().unwrap(), "--player", "f32"]);
+    assert_eq!(o.status.code(), Some(0), "{}", crate::util::stdout(&o));
+    let anim = immerse::certify::read_animation(&std::fs::read(&lottie).unwrap(), "x").unwrap();
+    let keys = &anim.paths[0].keys;
+    for (i, w) in keys.windows(2).enumerate() {
+        for s in [0.125f32, 0.375, 0.625, 0.875] {
+            for form in [true, false] {
+                let drawn = crate::certify::f32_player(&w[0].points, &w[1].points, s, form);
+                assert!(
+                    immerse::triangulate(&drawn).is_ok(),
+                    "segment {i}, s = {s}: an f32 player draws a shape that is not self-overlapping"
+                );
+            }
+        }
+    }
+}

@@ -9,7 +9,8 @@
 
 use anyhow::Context;
 use immerse::certify::{
-    MotionOptions, Player, Verdict, certify_motion, certify_segment, read_animation,
+    Answer, MotionOptions, Player, Verdict, certify_animation, certify_motion, certify_segment,
+    read_animation,
 };
 use immerse::morph::{Keyframe, timed_keyframes};
 use immerse_render as render;
@@ -80,6 +81,9 @@ pub(crate) struct Written {
     pub(crate) keys: usize,
     /// Keys written of each shape (one entry for a curve).
     pub(crate) per_shape: Vec<usize>,
+    /// Whether `immerse certify`, which reads no triangulation from the
+    /// document and triangulates on its own, certifies it too.
+    pub(crate) alone: bool,
 }
 
 /// One animated outline a document writes: its name in messages (empty
@@ -144,20 +148,32 @@ pub(crate) fn write_certified(
     render: impl Fn(Option<u32>) -> Result<String, render::RenderError>,
 ) -> anyhow::Result<Written> {
     let mut why = String::new();
+    // The fewest decimals that certify with the keys' triangulations,
+    // where no precision certifies as `immerse certify` reads the file.
+    let mut with_keys: Option<Written> = None;
     for digits in DIGITS {
         let text = render(digits)?;
         match certify_written(kind, &text, outlines) {
             Ok(()) => {
                 let per_shape: Vec<usize> = outlines.iter().map(|o| o.keys.len()).collect();
-                return Ok(Written {
+                let alone = certifies_alone(kind, &text);
+                let written = Written {
                     text,
                     digits,
                     keys: per_shape.iter().sum(),
                     per_shape,
-                });
+                    alone,
+                };
+                if alone {
+                    return Ok(written);
+                }
+                with_keys.get_or_insert(written);
             }
             Err(e) => why = e,
         }
+    }
+    if let Some(written) = with_keys {
+        return Ok(written);
     }
     anyhow::bail!(
         "the {} is not certified as written, even in full precision, for {} player: {why}; nothing was written (the shapes there are thinner than that player's rounding; an animated SVG, -o NAME.svg, is certified for f64 players)",
@@ -167,6 +183,18 @@ pub(crate) fn write_certified(
             _ => "an f64",
         }
     )
+}
+
+/// Whether `immerse certify` certifies `text` as it reads it: with no
+/// triangulation (the document carries none), triangulating where a piece
+/// starts. Coordinates rounded to few decimals can make three vertices
+/// exactly collinear inside a segment, where the triangulation it finds
+/// must flip and cannot; more decimals avoid that.
+fn certifies_alone(kind: Kind, text: &str) -> bool {
+    read_animation(text.as_bytes(), kind.name()).is_ok_and(|anim| {
+        certify_animation(&anim, kind.player(), MotionOptions::default()).answer
+            == Answer::Certified
+    })
 }
 
 /// Reads `text` back and certifies every segment of its animated outlines
@@ -271,12 +299,17 @@ pub(crate) fn describe(kind: Kind, written: &Written, bytes: usize) -> String {
         format!("{} keys", written.keys)
     };
     format!(
-        "{}: {keys}, coordinates {}, certified as written for an {} player ({bytes} bytes)",
+        "{}: {keys}, coordinates {}, certified as written for an {} player ({bytes} bytes){}",
         kind.name(),
         match written.digits {
             Some(d) => format!("to {d} decimals"),
             None => "in full precision".to_string(),
         },
-        kind.player()
+        kind.player(),
+        if written.alone {
+            ""
+        } else {
+            "; with the keys' triangulations: `immerse certify`, which finds its own, leaves a segment undecided"
+        }
     )
 }

@@ -206,10 +206,25 @@ fn margin(u: &Edge, w: &Edge, du: f64, dw: f64) -> Fe {
 /// Surely: the triangle `(a, b, c)` keeps `2·area > M` on [0, 1], where M
 /// is the margin of the vertex displacement bounds `delta` (upper bounds,
 /// zero for an exact player). False: undecided.
-pub(crate) fn triangle(p: &[Point], q: &[Point], [a, b, c]: [usize; 3], delta: &[f64]) -> bool {
-    let e1 = Edge::new(p, q, a, b);
-    let e2 = Edge::new(p, q, a, c);
-    triangle_on(&e1, &e2, delta[a] + delta[b], delta[a] + delta[c])
+pub(crate) fn triangle(p: &[Point], q: &[Point], corners: [usize; 3], delta: &[f64]) -> bool {
+    let (e1, e2, d1, d2) = triangle_edges(p, q, corners, delta);
+    triangle_on(&e1, &e2, d1, d2)
+}
+
+/// The edges of triangle `(a, b, c)` out of its first corner, with their
+/// displacement bounds.
+fn triangle_edges(
+    p: &[Point],
+    q: &[Point],
+    [a, b, c]: [usize; 3],
+    delta: &[f64],
+) -> (Edge, Edge, f64, f64) {
+    (
+        Edge::new(p, q, a, b),
+        Edge::new(p, q, a, c),
+        delta[a] + delta[b],
+        delta[a] + delta[c],
+    )
 }
 
 /// The triangle test on the edges `e1`, `e2` out of its first corner,
@@ -222,11 +237,21 @@ fn triangle_on(e1: &Edge, e2: &Edge, d1: f64, d2: f64) -> bool {
 /// first and last edges stay out of the cone that the margin allows).
 /// False: undecided.
 pub(crate) fn fan(p: &[Point], q: &[Point], v: usize, delta: &[f64]) -> bool {
+    let (a, b, da, db) = fan_edges(p, q, v, delta);
+    fan_on(&a, &b, da, db)
+}
+
+/// The first and last edges of the fan at `v` (to its next and previous
+/// vertex), with their displacement bounds.
+fn fan_edges(p: &[Point], q: &[Point], v: usize, delta: &[f64]) -> (Edge, Edge, f64, f64) {
     let n = p.len();
     let (next, prev) = ((v + 1) % n, (v + n - 1) % n);
-    let a = Edge::new(p, q, v, next);
-    let b = Edge::new(p, q, v, prev);
-    fan_on(&a, &b, delta[v] + delta[next], delta[v] + delta[prev])
+    (
+        Edge::new(p, q, v, next),
+        Edge::new(p, q, v, prev),
+        delta[v] + delta[next],
+        delta[v] + delta[prev],
+    )
 }
 
 /// The fan test on its first and last edges `a`, `b`, with their
@@ -250,13 +275,11 @@ const PIECES: usize = 256;
 pub(crate) fn triangle_in_pieces(
     p: &[Point],
     q: &[Point],
-    [a, b, c]: [usize; 3],
+    corners: [usize; 3],
     delta: &[f64],
     [s0, s1]: [f64; 2],
 ) -> bool {
-    let e1 = Edge::new(p, q, a, b);
-    let e2 = Edge::new(p, q, a, c);
-    let (d1, d2) = (delta[a] + delta[b], delta[a] + delta[c]);
+    let (e1, e2, d1, d2) = triangle_edges(p, q, corners, delta);
     in_pieces(s0, s1, |l, r| {
         triangle_on(&e1.on(l, r), &e2.on(l, r), d1, d2)
     })
@@ -270,11 +293,7 @@ pub(crate) fn fan_in_pieces(
     delta: &[f64],
     [s0, s1]: [f64; 2],
 ) -> bool {
-    let n = p.len();
-    let (next, prev) = ((v + 1) % n, (v + n - 1) % n);
-    let a = Edge::new(p, q, v, next);
-    let b = Edge::new(p, q, v, prev);
-    let (da, db) = (delta[v] + delta[next], delta[v] + delta[prev]);
+    let (a, b, da, db) = fan_edges(p, q, v, delta);
     in_pieces(s0, s1, |l, r| fan_on(&a.on(l, r), &b.on(l, r), da, db))
 }
 

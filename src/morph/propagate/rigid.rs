@@ -277,11 +277,7 @@ impl RigidGuide {
         let mut x = solve(&self.steps, self.pinned, b);
         let mut converged = true;
         if self.refined {
-            let (lo, hi) = x.iter().fold(
-                (Point::splat(f64::INFINITY), Point::splat(f64::NEG_INFINITY)),
-                |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-            );
-            let extent = (hi - lo).length();
+            let extent = crate::geom::polygon::bbox_diagonal(&x);
             let mut last = f64::INFINITY;
             for _ in 0..REFINE_STEPS {
                 let mut r = vec![Point::ZERO; self.n];
@@ -659,16 +655,12 @@ mod tests {
                 let (p, converged) = g.at_checked(t);
                 assert!(converged, "t {t}");
                 let q = g.at(t + 1e-12);
-                let (lo, hi) = p.iter().fold(
-                    (Point::splat(f64::INFINITY), Point::splat(f64::NEG_INFINITY)),
-                    |(lo, hi), x| (lo.min(*x), hi.max(*x)),
-                );
                 let d = p
                     .iter()
                     .zip(&q)
                     .map(|(x, y)| x.distance(*y))
                     .fold(0.0, f64::max);
-                worst = worst.max(d / (hi - lo).length());
+                worst = worst.max(d / crate::geom::polygon::bbox_diagonal(&p));
             }
             worst
         };

@@ -6,7 +6,7 @@ use crate::flip::sequence::crossings_per_shift;
 use crate::geom::Point;
 use crate::geom::polygon::min_triangle_angle as min_angle;
 use crate::immersion::NotSelfOverlapping;
-use crate::morph::staged::{Limit, SideInput};
+use crate::morph::staged::{Limit, Peak, SideInput};
 use crate::morph::{Fallback, Morph};
 use crate::morph::{MorphError, MorphOptions, Staged, ThirdVertexPath};
 use crate::quality::{Quality, triangulate_with};
@@ -715,9 +715,10 @@ const SAMPLES_PER_DIAGONAL: f64 = 32.0;
 
 /// Builds both sides for the shift `k` and picks the one to use. On the
 /// target route a side is given up once its vertices travel farther than
-/// `give_up_past` (a plan already made travels less) or than the other
-/// side when that one finished (the two race; what is kept does not
-/// depend on which finishes first).
+/// `give_up_past` (a plan already made travels less), and the side that
+/// follows in the race once they travel farther than the leading side's
+/// finished travel (what is kept does not depend on which finishes
+/// first).
 pub(crate) fn sides(
     p: &Prepared,
     k: usize,
@@ -727,8 +728,8 @@ pub(crate) fn sides(
     sides_beside(p, k, options, give_up_past, || ()).0
 }
 
-/// [`sides`], with `beside` run next to them: the source's side and
-/// `beside` one after the other on one core and the target's side on the
+/// [`sides`], with `beside` run next to them: the leading side and
+/// `beside` one after the other on one core and the following side on the
 /// other, so that whichever core finishes first takes `beside` over if the
 /// other has not started it.
 fn sides_beside<R: Send>(
@@ -753,20 +754,25 @@ fn sides_beside<R: Send>(
     };
     let diag = crate::geom::polygon::bbox_diagonal;
     let max_step = diag(a).max(diag(b)) / SAMPLES_PER_DIAGONAL;
-    // On the target route the sides race: each is given up once it
-    // travels farther than the other's finished travel (or the bound).
-    // The disk route picks a side by where it reaches the other
-    // triangulation, not by travel: nothing is given up there.
+    // On the target route the sides race, in an order fixed by the
+    // curves, so that what is kept never depends on timing (nor on which
+    // curve is the source): the side of the curve first by coordinates
+    // (the lead) is given up only past `give_up_past`; the other side (the
+    // follower) also once it travels farther than the lead's finished
+    // travel, as if it had started after the lead finished. The disk
+    // route picks a side by where it reaches the other triangulation, not
+    // by travel: nothing is given up there.
     let racing = options.intermediate == Intermediate::Target;
-    let fixed = give_up_past;
-    let infinite = f64::INFINITY.to_bits();
-    let (done_a, done_b) = (AtomicU64::new(infinite), AtomicU64::new(infinite));
-    let side = |s: &[Point],
-                t: &[[u32; 3]],
-                o: &[Point],
-                to: &[[u32; 3]],
-                rival: &AtomicU64,
-                done: &AtomicU64| {
+    let fixed = if racing { give_up_past } else { f64::INFINITY };
+    let lex = crate::geom::polygon::lex_key;
+    let a_leads = lex(a) <= lex(b);
+    let lead_done = AtomicU64::new(f64::INFINITY.to_bits());
+    let side = |from_a: bool, limit: Limit<'_>, done: Option<&AtomicU64>| {
+        let (s, t, o, to) = if from_a {
+            (&a[..], &ta[..], &b_in_a[..], &tb_in_a[..])
+        } else {
+            (&b[..], &tb[..], &a_in_b[..], &ta_in_b[..])
+        };
         let built = Staged::build(&SideInput {
             s,
             t_start: t,
@@ -779,46 +785,64 @@ fn sides_beside<R: Send>(
             intermediate: options.intermediate,
             floor,
             max_step,
-            limit: if racing {
-                Limit {
-                    fixed,
-                    rival: Some(rival),
-                }
-            } else {
-                Limit::NONE
-            },
+            limit,
         });
-        if let (Ok(Some(st)), true) = (&built.0, racing) {
+        if let (Ok(Some(st)), Some(done)) = (&built.0, done) {
             done.store(st.mean_travel().to_bits(), Ordering::Relaxed);
         }
         built
     };
-    // The two sides are independent: one on each core.
-    let (((side_a, peak_a), r), (side_b, peak_b)) = rayon::join(
-        || rayon::join(|| side(a, ta, &b_in_a, &tb_in_a, &done_b, &done_a), beside),
-        || side(b, tb, &a_in_b, &ta_in_b, &done_a, &done_b),
+    let follow_limit = Limit {
+        fixed,
+        rival: racing.then_some(&lead_done),
+    };
+    // One side on each core, the lead first (on one core the follower
+    // then starts with the lead's travel as its limit).
+    let (((lead, lead_peak), r), (follow, follow_peak)) = rayon::join(
+        || {
+            rayon::join(
+                || side(a_leads, Limit::fixed(fixed), Some(&lead_done)),
+                beside,
+            )
+        },
+        || side(!a_leads, follow_limit, None),
     );
-    // Which side the race gives up depends on which finishes first; what
-    // is kept does not. A side whose travel (or, if it failed, whose
-    // travel when it last looked at its limit) passes its final limit
-    // could have been given up in another run: it counts as given up. The
-    // rest is what any run gives.
     let travel = |s: &SideResult| match s {
         Ok(Some(s)) => s.mean_travel(),
         Ok(None) | Err(_) => f64::INFINITY,
     };
-    let settle = |s: SideResult, peak: f64, other: &SideResult| -> SideResult {
-        let limit = fixed.min(travel(other));
+    // A side whose travel (or, if it failed, whose travel when it last
+    // consulted its limit) passes `limit` is given up.
+    let settle = |s: SideResult, peak: Peak, limit: f64| -> SideResult {
         match s {
             Ok(Some(st)) if racing && st.mean_travel() > limit => Ok(None),
-            Err(_) if racing && peak > limit => Ok(None),
+            Err(_) if racing && peak.consulted > limit => Ok(None),
             s => s,
         }
     };
-    let settled_a = settle(side_a, peak_a, &side_b);
-    let side_b = settle(side_b, peak_b, &settled_a);
-    let side_a = settled_a;
-    let lex = crate::geom::polygon::lex_key;
+    let limit = fixed.min(travel(&lead));
+    // The follower decided everything as it would have under `limit` from
+    // the start unless it went on past `limit` before the lead finished.
+    // Where it first did so on a leg toward an intermediate, it would have
+    // been given up there; where on its last leg, that leg's choice could
+    // differ, and it is built again under `limit` (rare: only where the
+    // follower outran the lead's finish).
+    let follow = if !racing {
+        follow
+    } else if follow_peak.went_on_walking > limit {
+        Ok(None)
+    } else if follow_peak.went_on_last > limit {
+        let (again, peak) = side(!a_leads, Limit::fixed(limit), None);
+        settle(again, peak, limit)
+    } else {
+        settle(follow, follow_peak, limit)
+    };
+    let lead = settle(lead, lead_peak, fixed.min(travel(&follow)));
+    let (side_a, side_b) = if a_leads {
+        (lead, follow)
+    } else {
+        (follow, lead)
+    };
     // The disk route compares where each side reaches the other
     // triangulation (Mukherjee & Gopi); the target route compares how far
     // the vertices travel (the detour of docs/design.md §7b). A side that

@@ -349,15 +349,36 @@ impl Tween {
             let last = staged.legs.last().and_then(|l| l.keys.last());
             first.map_or(0.0, |p| d(p)).max(last.map_or(0.0, |p| d(p)))
         };
-        {
+        let bridges: Vec<usize> = {
             use rayon::prelude::*;
             let tol = options.key_tolerance * diagonal;
-            staged.legs.par_iter_mut().for_each(|leg| {
-                leg.refine_keys(tol);
-                merge_keys(leg, tol);
-            });
-        }
+            staged
+                .legs
+                .par_iter_mut()
+                .map(|leg| {
+                    let bridges = leg.refine_keys(tol);
+                    merge_keys(leg, tol);
+                    bridges
+                })
+                .collect()
+        };
         fallbacks.extend(staged.fallbacks.iter().cloned());
+        for ((j, &count), leg) in bridges.iter().enumerate().zip(&staged.legs) {
+            if count > 0 {
+                fallbacks.push(Fallback::new(
+                    &format!(
+                        "placed the keys of {count} stretch{} of leg {} on the straight path between two checked samples",
+                        if count == 1 { "" } else { "es" },
+                        j + 1
+                    ),
+                    &format!(
+                        "the {} path is not an immersion anywhere inside {}: the layout's rounding turns a thin triangle over",
+                        leg.path,
+                        if count == 1 { "it" } else { "them" }
+                    ),
+                ));
+            }
+        }
         let mut paths: Vec<ThirdVertexPath> = Vec::new();
         for leg in &staged.legs {
             if !paths.contains(&leg.path) {
@@ -606,7 +627,7 @@ impl Tween {
         // the rounding of the interpolation or on a segment the keys could
         // not certify, the nearest point of the same segment that passes
         // is used if it lies within [`NUDGE_REACH`] of the segment;
-        // otherwise the path itself.
+        // otherwise the segment's bridge, then the path itself.
         let checked = match check_triangles(&interpolated, tris) {
             Ok(()) => Ok((interpolated, None)),
             Err(defect) => first_passing(nudges(w, NUDGE_REACH), tris, |v| between(k, v))
@@ -623,58 +644,90 @@ impl Tween {
             Ok(found) => found,
             Err(defect) => {
                 // The segment between the keys is not an immersion here (a
-                // segment the keys could not certify): the path itself at
-                // this t, which keeps within the key tolerance of the
-                // segment; where that fails too, the nearest point of the
-                // segment that passes (its keys do: they are checked
-                // samples). A frame never jumps to another path.
-                let samples = &leg.samples;
-                let span = samples.get(k + 1).map_or(0.0, |&s1| s1 - samples[k]);
+                // segment the keys could not certify). The frame comes from
+                // the segment's bridge: the straight path planned between
+                // its two keys (both valid) on the same triangulation,
+                // which runs from one to the other as close to the chord
+                // as validity allows, so frames on the chord and frames on
+                // the bridge meet; where the bridge fails too, from the
+                // path itself at this t (within the key tolerance of the
+                // chord where the keys could follow it); and last from the
+                // nearest point of the segment that passes (its keys do:
+                // they are checked samples). A frame never jumps to
+                // another path.
                 let why = format!(
                     "the straight segment between two keys was not an immersion there ({defect})"
                 );
-                // The path at s, or as near it as [`NUDGE_REACH`] of the
-                // segment where the layout's rounding turns a triangle over.
-                let on_path = first_passing(
-                    std::iter::once(w).chain(nudges(w, NUDGE_REACH)),
-                    tris,
-                    |v| leg.plan.positions(samples[k] + v * span, leg.path),
-                );
-                match on_path {
-                    Ok((v, on_path)) => {
-                        let what = format!(
-                            "used the {} path itself for the frame at t = {t}{}",
-                            leg.path,
-                            if v == w {
-                                String::new()
-                            } else {
-                                format!(", {v} of the way along the segment instead of {w}")
-                            }
-                        );
-                        (on_path, Some(Fallback::new(&what, &why)))
+                let near = |v: f64| {
+                    if v == w {
+                        String::new()
+                    } else {
+                        format!(", {v} of the way along the segment instead of {w}")
                     }
-                    Err(e) => {
-                        let e = e.map_or_else(String::new, |e| e.to_string());
-                        let ends = if w < 0.5 { [0.0, 1.0] } else { [1.0, 0.0] };
-                        let Ok((v, points)) =
-                            first_passing(nudges(w, 1.0).chain(ends), tris, |v| between(k, v))
-                        else {
-                            return Err(MorphError::InvalidFrame {
-                                t,
-                                path: leg.path,
-                                defect: e,
-                            });
-                        };
+                };
+                let fractions = || std::iter::once(w).chain(nudges(w, NUDGE_REACH));
+                let bridge = keys.get(k + 1).and_then(|b| leg.bridge(&keys[k], b));
+                let bridged = bridge.map(|br| {
+                    first_passing(fractions(), tris, |v| {
+                        br.positions(v, ThirdVertexPath::Straight)
+                    })
+                });
+                match bridged {
+                    Some(Ok((v, points))) => {
                         let what = format!(
-                            "used the nearest valid point of the segment between two keys for the frame at t = {t} ({v} of the way along it instead of {w})"
+                            "used the straight path between two keys for the frame at t = {t}{}",
+                            near(v)
                         );
-                        let why = format!("{why}, nor the {} path ({e})", leg.path);
                         (points, Some(Fallback::new(&what, &why)))
+                    }
+                    _ => {
+                        let why = format!("{why}, nor the straight path between its keys");
+                        let samples = &leg.samples;
+                        let span = samples.get(k + 1).map_or(0.0, |&s1| s1 - samples[k]);
+                        let on_path = first_passing(fractions(), tris, |v| {
+                            leg.plan.positions(samples[k] + v * span, leg.path)
+                        });
+                        match on_path {
+                            Ok((v, on_path)) => {
+                                let what = format!(
+                                    "used the {} path itself for the frame at t = {t}{}",
+                                    leg.path,
+                                    near(v)
+                                );
+                                (on_path, Some(Fallback::new(&what, &why)))
+                            }
+                            Err(e) => {
+                                let e = e.map_or_else(String::new, |e| e.to_string());
+                                let ends = if w < 0.5 { [0.0, 1.0] } else { [1.0, 0.0] };
+                                let Ok((v, points)) =
+                                    first_passing(nudges(w, 1.0).chain(ends), tris, |v| {
+                                        between(k, v)
+                                    })
+                                else {
+                                    return Err(MorphError::InvalidFrame {
+                                        t,
+                                        path: leg.path,
+                                        defect: e,
+                                    });
+                                };
+                                let what = format!(
+                                    "used the nearest valid point of the segment between two keys for the frame at t = {t} ({v} of the way along it instead of {w})"
+                                );
+                                let why = format!("{why}, nor the {} path ({e})", leg.path);
+                                (points, Some(Fallback::new(&what, &why)))
+                            }
+                        }
                     }
                 }
             }
         };
-        let frame = if self.reversed {
+        Ok((self.place(t, points, tris), fallback))
+    }
+
+    /// The frame at `t` with `points` under `tris` (the leg's labels), in
+    /// the labels of the frames.
+    fn place(&self, t: f64, points: Vec<Point>, tris: &[[u32; 3]]) -> Frame {
+        if self.reversed {
             let (n, k) = (self.n, self.shift);
             Frame {
                 t,
@@ -687,8 +740,7 @@ impl Tween {
                 points,
                 triangles: tris.to_vec(),
             }
-        };
-        Ok((frame, fallback))
+        }
     }
 
     /// Frames at the given fractions of the travel, each checked exactly,

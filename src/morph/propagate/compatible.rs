@@ -437,6 +437,11 @@ impl Compatible {
         self
     }
 
+    /// The fan margin the paths keep (see [`Compatible::new`]).
+    pub(crate) fn fan_margin(&self) -> f64 {
+        self.fan_margin
+    }
+
     /// The shared triangulation.
     pub(crate) fn triangles(&self) -> &[[u32; 3]] {
         &self.triangles

@@ -254,6 +254,13 @@ impl Server {
                 Ok((stream, _)) => {
                     noted = false;
                     self.admit(stream, app.clone());
+                    // Lets the connections already admitted run, and the
+                    // I/O driver be polled, before the next is admitted: in
+                    // a burst of connections, a client that sent its
+                    // request at once could otherwise still count as idle,
+                    // the oldest, once the burst has filled every slot, and
+                    // be closed to make room.
+                    tokio::task::yield_now().await;
                 }
                 Err(e) => {
                     // Out of file handles (or another passing failure):

@@ -64,6 +64,13 @@ const CORNER_TURN: f64 = std::f64::consts::FRAC_PI_3;
 /// ribbon's rounded cap: 3%.
 const ROUNDED_SPAN: f64 = 0.03;
 
+/// The span tried when no rounded corners within [`ROUNDED_SPAN`] match
+/// up: 10%, so that a window centred on one corner of a square cap reaches
+/// the other where the cap is up to 5% of the perimeter (a strip about ten
+/// times as long as it is wide). Tried second, so that a thin ribbon's
+/// folds (a half turn over a few percent) do not join its caps.
+const WIDE_ROUNDED_SPAN: f64 = 0.10;
+
 /// Least turning of a rounded corner within [`ROUNDED_SPAN`]: 160°, so
 /// that a wide loop of the outline (a ribbon's fold) is not one.
 const ROUNDED_TURN: f64 = 8.0 * std::f64::consts::PI / 9.0;
@@ -81,7 +88,9 @@ const MOST_CORNERS: usize = 16;
 /// Where the sharp corners do not match up, rounded corners are tried the
 /// same way: stretches of at most 3% of the perimeter turning by 160° or
 /// more, such as the rounded caps of a drawn ribbon, each placed at the
-/// middle of its turning.
+/// middle of its turning; where those do not match up either, stretches of
+/// at most 10% (the square caps of a strip as wide as a twentieth of its
+/// perimeter).
 /// Of the cyclic matchings of the corners the one that stretches the
 /// pieces between corners least wins (the sum of |ln| of the ratios of
 /// their shares of the perimeter, to a tenth), then the best score as in
@@ -97,7 +106,15 @@ pub(crate) fn align_corners(a: &[Point], b: &[Point]) -> Option<Pairing> {
     let match_up =
         |ca: &[(f64, f64)], cb: &[(f64, f64)]| corners_small_to_large(a, b, &alpha, &beta, ca, cb);
     let sharp = match_up(&corners(a, &alpha), &corners(b, &beta));
-    let found = sharp.or_else(|| match_up(&rounded_corners(a, &alpha), &rounded_corners(b, &beta)));
+    let rounded = |span: f64| {
+        match_up(
+            &rounded_corners(a, &alpha, span),
+            &rounded_corners(b, &beta, span),
+        )
+    };
+    let found = sharp
+        .or_else(|| rounded(ROUNDED_SPAN))
+        .or_else(|| rounded(WIDE_ROUNDED_SPAN));
     if swap { found.map(back) } else { found }
 }
 
@@ -125,11 +142,11 @@ fn corners(p: &[Point], at: &[f64]) -> Vec<(f64, f64)> {
 
 /// The rounded corners of `p` as (fraction of the perimeter, signed
 /// turning): each maximal run of vertices around which the outline turns
-/// by at least [`ROUNDED_TURN`] one way within [`ROUNDED_SPAN`] of the
-/// perimeter, centred on the vertex (half the span either side), is one
+/// by at least [`ROUNDED_TURN`] one way within `span` of the perimeter,
+/// centred on the vertex (half the span either side), is one
 /// corner, placed where half of the run's vertices' own turning is done. A
 /// curve whose turning is that strong everywhere has none.
-fn rounded_corners(p: &[Point], at: &[f64]) -> Vec<(f64, f64)> {
+fn rounded_corners(p: &[Point], at: &[f64], span: f64) -> Vec<(f64, f64)> {
     let n = p.len();
     if n < 3 {
         return Vec::new();
@@ -138,7 +155,7 @@ fn rounded_corners(p: &[Point], at: &[f64]) -> Vec<(f64, f64)> {
     // Window sums around each vertex by two pointers over the outline
     // unwrapped three times: index j is vertex j − n (mod n), at position
     // at[j % n] + j / n − 1, so the window [lo, hi) stays in range.
-    let half = ROUNDED_SPAN / 2.0;
+    let half = span / 2.0;
     let mut window = vec![0.0; n];
     let (mut lo, mut hi, mut sum) = (0usize, 0usize, 0.0);
     let upos = |j: usize| at[j % n] + (j / n) as f64 - 1.0;
@@ -580,7 +597,7 @@ mod tests {
         let b = rounded_arc_strip(90, 12.2, 0.3, 10);
         for p in [&a, &b] {
             assert!(corner_vertices(p).is_empty());
-            let caps = rounded_corners(p, &positions(p));
+            let caps = rounded_corners(p, &positions(p), ROUNDED_SPAN);
             assert_eq!(caps.len(), 2, "{caps:?}");
             assert!(
                 caps.iter()
@@ -606,7 +623,12 @@ mod tests {
         // A sharp-cornered strip keeps matching by its sharp corners, and
         // a circle (turning evenly) has no rounded corner.
         assert!(
-            rounded_corners(&circle(30, 0.0, 1.0), &positions(&circle(30, 0.0, 1.0))).is_empty()
+            rounded_corners(
+                &circle(30, 0.0, 1.0),
+                &positions(&circle(30, 0.0, 1.0)),
+                ROUNDED_SPAN
+            )
+            .is_empty()
         );
         let sharp = arc_strip(20, 4.0, 0.3);
         assert!(align_corners(&sharp, &arc_strip(60, 6.0, 0.5)).is_some());
@@ -622,8 +644,45 @@ mod tests {
             let c = crate::curve::Curve::from_path(dir.join(name)).unwrap();
             let at = positions(&c.points);
             assert!(corners(&c.points, &at).is_empty(), "{name}");
-            let caps = rounded_corners(&c.points, &at);
+            let caps = rounded_corners(&c.points, &at, ROUNDED_SPAN);
             assert_eq!(caps.len(), 2, "{name}: {caps:?}");
+        }
+    }
+
+    #[test]
+    fn strips_with_wide_square_caps_match_end_to_end() {
+        // A 300° annulus sector (caps 4% of its perimeter) and a coarse
+        // 470° curl (caps 4.4%), both wound counter-clockwise: no sharp
+        // corners match (4 against 9), no cap is within 3% of either
+        // perimeter, and within 10% each has its two caps.
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("curves");
+        let load = |name: &str| {
+            crate::curve::Curve::from_path(dir.join(name))
+                .unwrap()
+                .points
+        };
+        let (a, b) = (
+            load("annulus-sector-300deg-n40.json"),
+            load("curl-strip-n10.json"),
+        );
+        for p in [&a, &b] {
+            let at = positions(p);
+            assert!(rounded_corners(p, &at, ROUNDED_SPAN).is_empty());
+            let caps = rounded_corners(p, &at, WIDE_ROUNDED_SPAN);
+            assert_eq!(caps.len(), 2, "{caps:?}");
+        }
+        let (a2, b2, k) = align_corners(&a, &b).expect("the wide caps match up");
+        let n = a2.len();
+        // Each corner of the sector's caps (its outer arc's ends at
+        // vertices 0 and 19, its inner arc's at 20 and 39) lands on the
+        // same corner of the curl's (outer ends 0 and 4, inner 5 and 9).
+        for (i, j) in [(0, 0), (19, 4), (20, 5), (39, 9)] {
+            let on = (a2.iter().position(|p| *p == a[i]).unwrap() + k) % n;
+            let want = b2.iter().position(|p| *p == b[j]).unwrap();
+            assert!(
+                on.abs_diff(want).min(n - on.abs_diff(want)) <= 1,
+                "sector vertex {i} on {on}, curl vertex {j} at {want}"
+            );
         }
     }
 

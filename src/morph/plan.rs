@@ -267,8 +267,8 @@ pub enum Correspondence {
     /// As [`Correspondence::Outline`], piece by piece between corners (a
     /// strip's long and short edges correspond); where the sharp corners
     /// do not match up, the rounded caps (a stretch of at most 3% of the
-    /// perimeter turning by 160° or more) are matched instead; the outline
-    /// rule when neither matches.
+    /// perimeter turning by 160° or more, else of at most 10%) are matched
+    /// instead; the outline rule when neither matches.
     Corners,
     /// The cyclic shift with the fewest edge flips between the triangulations.
     ///

@@ -362,35 +362,32 @@ fn motion_meets_its_goal_on_the_motion_pairs() {
     assert!(g >= 0.5, "median angle ratio {g:.2}");
 }
 
-/// The same gates on `curves/reference-pairs.list`. One pair keeps less
-/// than 0.9 of its turning, and is named with the floor it keeps: an
-/// annulus sector against a curl that coils past itself, where only plans
-/// detouring past 3 keep 0.9 (docs/motion.md). A letter E against a
-/// 5-point star kept 0.80 with the correspondence that travels least (the
-/// E's inner corners turn against the star's points, and every path
-/// straightens them on the way); the min-flips correspondence, raced in
-/// where the kept plan unwinds, keeps 0.92.
+/// The same gates on `curves/reference-pairs.list`, every pair held to
+/// unwind 0.9. An annulus sector against a coarse curl kept 0.89 when
+/// matched by outline (its cap fell in the middle of the curl's outer
+/// edge); matched cap to cap by the corners rule's wide window it keeps
+/// 1.00 (docs/motion.md). A letter E against a 5-point star kept 0.80
+/// with the correspondence that travels least (the E's inner corners turn
+/// against the star's points, and every path straightens them on the
+/// way); the min-flips correspondence, raced in where the kept plan
+/// unwinds, keeps 0.92.
 #[test]
 fn motion_meets_its_goal_on_the_reference_pairs() {
-    let known: [(&str, &str, f64); 1] = [(
-        "annulus-sector-300deg-n40.json",
-        "curl-strip-n10.json",
-        0.87,
-    )];
     let stride = if cfg!(debug_assertions) { 4 } else { 1 };
-    let mut detours = Vec::new();
+    let (mut detours, mut angles) = (Vec::new(), Vec::new());
     for (a, b) in reference_pairs().into_iter().step_by(stride) {
         let name = format!("{a} → {b}");
-        let floor = known
-            .iter()
-            .find(|k| k.0 == a && k.1 == b)
-            .map_or(0.9, |k| k.2);
-        let (detour, _) = assert_pair_gates(&name, &a, &b, floor);
+        let (detour, angle) = assert_pair_gates(&name, &a, &b, 0.9);
         detours.push(detour);
+        angles.push(angle);
     }
-    detours.sort_by(f64::total_cmp);
-    let median = detours[detours.len() / 2];
-    assert!(median <= 1.5, "median detour {median:.2}");
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let (d, g) = (median(detours), median(angles));
+    assert!(d <= 1.5, "median detour {d:.2}");
+    assert!(g >= 0.5, "median angle ratio {g:.2}");
 }
 
 /// The two sides of a plan race on the target route (each is given up

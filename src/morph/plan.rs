@@ -796,16 +796,18 @@ fn sides_beside<R: Send>(
         fixed,
         rival: racing.then_some(&lead_done),
     };
-    // One side on each core, the lead first (on one core the follower
-    // then starts with the lead's travel as its limit).
-    let (((lead, lead_peak), r), (follow, follow_peak)) = rayon::join(
+    // The lead first, then the follower, which on one core starts with
+    // the lead's travel as its limit; `beside` is taken first by an idle
+    // core (on two cores it runs beside the lead, and the follower after
+    // whichever ends first).
+    let (((lead, lead_peak), (follow, follow_peak)), r) = rayon::join(
         || {
             rayon::join(
                 || side(a_leads, Limit::fixed(fixed), Some(&lead_done)),
-                beside,
+                || side(!a_leads, follow_limit, None),
             )
         },
-        || side(!a_leads, follow_limit, None),
+        beside,
     );
     let travel = |s: &SideResult| match s {
         Ok(Some(s)) => s.mean_travel(),

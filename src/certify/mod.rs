@@ -76,6 +76,7 @@ mod exact;
 mod filter;
 mod motion;
 mod read;
+mod repair;
 
 use std::cmp::Ordering;
 use std::fmt;
@@ -91,6 +92,7 @@ pub use read::{
 use exact::{Alg, Quad, Scaled, fan_ok, first_nonpositive, positive_on};
 use num_bigint::BigInt;
 use rayon::prelude::*;
+pub(crate) use repair::flip_to_certify;
 
 use crate::geom::Point;
 use crate::immersion::{ImmersionDefect, check, check_structure};

@@ -358,6 +358,7 @@ impl Tween {
                 .map(|leg| {
                     let bridges = leg.refine_keys(tol);
                     merge_keys(leg, tol);
+                    leg.repair_keys();
                     bridges
                 })
                 .collect()
@@ -479,8 +480,8 @@ impl Tween {
         let mut side: Vec<SideKey<'_>> = Vec::with_capacity(self.key_count());
         let count = self.key_count().max(2);
         for (i, leg) in legs.iter().enumerate() {
-            let tris = leg.plan.triangles();
             for (k, p) in leg.keys.iter().enumerate() {
+                let tris = leg.segment_triangles(k);
                 if k == 0 && i > 0 {
                     // The flip key: the previous leg's last key is the
                     // same shape; this one starts the following segment.
@@ -606,7 +607,7 @@ impl Tween {
         }
         let f = if self.reversed { 1.0 - t } else { t };
         let (leg, k, w) = self.locate(f);
-        let tris = leg.plan.triangles();
+        let tris = leg.segment_triangles(k);
         // The animation: every vertex on a straight line between two keys.
         let keys = &leg.keys;
         let between = |k: usize, w: f64| -> Vec<Point> {
@@ -1167,4 +1168,5 @@ fn merge_keys(leg: &mut Leg, tol: f64) {
         .collect();
     leg.samples = kept.iter().map(|&k| leg.samples[k]).collect();
     leg.certified = certified;
+    leg.repaired.clear();
 }

@@ -843,3 +843,54 @@ proptest! {
         }
     }
 }
+
+/// Stress pairs whose keys, all on the leg's one triangulation, left
+/// segments uncertified (a triangle nearly collinear at both keys, its
+/// area decided by the rounding of their coordinates): the morph gives
+/// those segments a flipped triangulation of their own, so the keys
+/// change triangulation inside the leg, and every segment is certified,
+/// by the certificate and by the independent checker, each segment under
+/// the triangulation of its first key (the checker on the segments
+/// beside each change).
+#[test]
+fn segments_a_thin_triangle_leaves_uncertified_are_flipped_and_certified() {
+    use immerse::morph::{CurveMorphOptions, Tween};
+    for index in [105, 131] {
+        let pair = testkit::stress::pair(0xbee5, index);
+        let tw = Tween::new(&pair.source, &pair.target, &CurveMorphOptions::default()).unwrap();
+        assert_eq!(tw.report().paths.len(), 1, "pair {index}: one leg");
+        assert!(tw.is_certified(), "pair {index}");
+        let keys = tw.keyframes();
+        let list: Vec<Key<'_>> = keys
+            .iter()
+            .map(|k| Key {
+                t: k.t,
+                points: &k.points,
+                triangles: &k.triangles,
+            })
+            .collect();
+        let report = certify_keys(&list, Player::Exact).unwrap();
+        assert!(report.is_certified(), "pair {index}: {report:?}");
+        let changes = keys
+            .windows(2)
+            .filter(|w| w[0].triangles != w[1].triangles)
+            .count();
+        assert!(changes >= 1, "pair {index}: no segment was flipped");
+        // The independent checker on the segments on either side of each
+        // change of triangulation (the rational arithmetic is slow on
+        // thousands of segments; the certificate above took them all).
+        let mut checked = 0;
+        for (k, w) in keys.windows(2).enumerate() {
+            let starts_one = k > 0 && keys[k - 1].triangles != w[0].triangles;
+            if starts_one || w[1].triangles != w[0].triangles {
+                checked += 1;
+                assert_eq!(
+                    checker(&w[0].points, &w[1].points, &w[0].triangles),
+                    None,
+                    "pair {index}, segment {k}"
+                );
+            }
+        }
+        assert!(checked >= 1, "pair {index}");
+    }
+}

@@ -191,106 +191,36 @@ impl Leg {
     }
 
     /// Repairs each segment that the leg's triangulation leaves
-    /// uncertified, where it can: first by giving the segment a
-    /// triangulation of its own, flipped from the leg's until the segment
-    /// is certified (`crate::certify::flip_to_certify`: a nearly collinear
-    /// triangle at both keys has an area the rounding of their coordinates
-    /// decides, and another triangulation may not need it); then by
-    /// splitting it at the path's midpoints below [`MIN_KEY_STEP`], down to
-    /// [`REPAIR_DEPTH`] halvings, each piece certified under the leg's
-    /// triangulation or a flipped one. A split is kept only when every
-    /// piece is certified. Keys where the triangulation changes are flip
-    /// keys, valid under both. Returns how many segments were repaired.
+    /// uncertified, where it can, by giving the segment a triangulation of
+    /// its own, flipped from the leg's until the segment is certified
+    /// (`crate::certify::flip_to_certify`: a nearly collinear triangle at
+    /// both keys has an area the rounding of their coordinates decides,
+    /// and another triangulation may not need it). The keys stay where
+    /// they are; those where the triangulation changes are flip keys,
+    /// valid under both. Returns how many segments were repaired.
     pub(crate) fn repair_keys(&mut self) -> usize {
         use rayon::prelude::*;
         if self.certified.iter().all(|&c| c) {
             return 0;
         }
-        let pieces: Vec<Option<Vec<Piece>>> = self
+        let tris = self.plan.triangles();
+        let repaired: Vec<Option<Vec<[u32; 3]>>> = self
             .certified
             .par_iter()
             .enumerate()
             .map(|(k, &c)| {
-                if c {
-                    return None;
-                }
-                let (a, b) = (
-                    (self.samples[k], self.keys[k].as_slice()),
-                    (self.samples[k + 1], self.keys[k + 1].as_slice()),
-                );
-                let mut out = Vec::new();
-                self.repair(a, b, REPAIR_DEPTH, &mut out).then_some(out)
+                let (a, b) = (&self.keys[k], &self.keys[k + 1]);
+                (!c).then(|| {
+                    crate::certify::flip_to_certify(a, b, tris, crate::certify::Player::Exact)
+                })?
             })
             .collect();
-        let count = pieces.iter().flatten().count();
-        if count == 0 {
-            return 0;
-        }
-        let (keys, samples, certified) = (
-            std::mem::take(&mut self.keys),
-            std::mem::take(&mut self.samples),
-            std::mem::take(&mut self.certified),
-        );
-        let mut repaired = Vec::with_capacity(certified.len());
-        self.keys.push(keys[0].clone());
-        self.samples.push(samples[0]);
-        for (k, (c, piece)) in certified.into_iter().zip(pieces).enumerate() {
-            match piece {
-                Some(list) => {
-                    for p in list {
-                        self.samples.push(p.s);
-                        self.keys.push(p.points);
-                        self.certified.push(true);
-                        repaired.push(p.triangles);
-                    }
-                }
-                None => {
-                    self.samples.push(samples[k + 1]);
-                    self.keys.push(keys[k + 1].clone());
-                    self.certified.push(c);
-                    repaired.push(None);
-                }
-            }
+        let count = repaired.iter().flatten().count();
+        for (c, r) in self.certified.iter_mut().zip(&repaired) {
+            *c |= r.is_some();
         }
         self.repaired = repaired;
         count
-    }
-
-    /// Appends to `out` the pieces of the segment from `a` to `b` (each
-    /// ending at a key) certified under the leg's triangulation or a
-    /// flipped one, splitting at the path's midpoint up to `depth` times;
-    /// false (with `out` in any state) where a piece cannot be.
-    fn repair(
-        &self,
-        a: (f64, &[Point]),
-        b: (f64, &[Point]),
-        depth: u32,
-        out: &mut Vec<Piece>,
-    ) -> bool {
-        let tris = self.plan.triangles();
-        let player = crate::certify::Player::Exact;
-        let mut end = |triangles: Option<Vec<[u32; 3]>>| {
-            out.push(Piece {
-                s: b.0,
-                points: b.1.to_vec(),
-                triangles,
-            });
-            true
-        };
-        if crate::certify::certify_segment(a.1, b.1, tris, player).is_ok_and(|r| r.is_certified()) {
-            return end(None);
-        }
-        if let Some(t) = crate::certify::flip_to_certify(a.1, b.1, tris, player) {
-            return end(Some(t));
-        }
-        let sm = 0.5 * (a.0 + b.0);
-        if depth == 0 || !(a.0 < sm && sm < b.0) {
-            return false;
-        }
-        let pm = self.plan.positions(sm, self.path);
-        check_triangles(&pm, tris).is_ok()
-            && self.repair(a, (sm, &pm), depth - 1, out)
-            && self.repair((sm, &pm), b, depth - 1, out)
     }
 
     /// The keys of [`Leg::refine_keys`] from the checked samples
@@ -530,19 +460,6 @@ impl KeyOut {
         self.keys.push(b.1.to_vec());
     }
 }
-
-/// A piece of a segment that [`Leg::repair_keys`] certified: the key that
-/// ends it (its parameter and shape) and its own triangulation, if not
-/// the leg's.
-struct Piece {
-    s: f64,
-    points: Vec<Point>,
-    triangles: Option<Vec<[u32; 3]>>,
-}
-
-/// Most halvings of an uncertified segment by [`Leg::repair_keys`], below
-/// [`MIN_KEY_STEP`]: a bound on its work and on the keys it adds.
-const REPAIR_DEPTH: u32 = 6;
 
 /// How much the total area of a straight segment's midpoint may differ
 /// from the path's there, relative to the path's (1 %).

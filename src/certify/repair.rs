@@ -17,7 +17,7 @@ use crate::immersion::dp::is_ccw;
 
 /// Most flips tried for one segment: a bound on the work (each costs one
 /// certification of the segment, O(n)).
-pub(crate) const MAX_REPAIR_FLIPS: usize = 16;
+const MAX_REPAIR_FLIPS: usize = 16;
 
 /// A triangulation under which the straight-line motion from `start` to
 /// `end` is certified for every s against `player`, reached from

@@ -861,15 +861,7 @@ fn segments_a_thin_triangle_leaves_uncertified_are_flipped_and_certified() {
         assert_eq!(tw.report().paths.len(), 1, "pair {index}: one leg");
         assert!(tw.is_certified(), "pair {index}");
         let keys = tw.keyframes();
-        let list: Vec<Key<'_>> = keys
-            .iter()
-            .map(|k| Key {
-                t: k.t,
-                points: &k.points,
-                triangles: &k.triangles,
-            })
-            .collect();
-        let report = certify_keys(&list, Player::Exact).unwrap();
+        let report = crate::util::certify_keyframes(&keys, Player::Exact);
         assert!(report.is_certified(), "pair {index}: {report:?}");
         let changes = keys
             .windows(2)

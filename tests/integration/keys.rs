@@ -4,7 +4,7 @@
 //! through `immerse certify`, and the frames are evenly paced.
 
 use crate::util::{curve, curves_dir, immerse, stderr};
-use immerse::certify::{Key, Player, certify_keys};
+use immerse::certify::Player;
 use immerse::morph::{CurveMorphOptions, Tween};
 use immerse::{Curve, Point};
 use testkit::pairs;
@@ -36,15 +36,7 @@ fn keys_of_the_motion_pairs_are_certified_and_increase() {
         assert_eq!(keys[0].t, 0.0);
         assert_eq!(keys.last().unwrap().t, 1.0);
         assert!(keys.windows(2).all(|w| w[0].t < w[1].t), "{a} → {b}: times");
-        let list: Vec<Key<'_>> = keys
-            .iter()
-            .map(|k| Key {
-                t: k.t,
-                points: &k.points,
-                triangles: &k.triangles,
-            })
-            .collect();
-        let report = certify_keys(&list, Player::Exact).unwrap();
+        let report = crate::util::certify_keyframes(&keys, Player::Exact);
         assert_eq!(
             report.is_certified(),
             tw.is_certified(),

@@ -90,3 +90,20 @@ pub fn assert_stderr(dir: Option<&Path>, args: &[&str], code: i32, expected: &st
     }
     out
 }
+
+/// `certify_keys` on a morph's keyframes, each segment under its first
+/// key's triangulation, with the library's own certificate.
+pub fn certify_keyframes(
+    keys: &[immerse::morph::Keyframe],
+    player: immerse::certify::Player,
+) -> immerse::certify::KeysReport {
+    let list: Vec<immerse::certify::Key<'_>> = keys
+        .iter()
+        .map(|k| immerse::certify::Key {
+            t: k.t,
+            points: &k.points,
+            triangles: &k.triangles,
+        })
+        .collect();
+    immerse::certify::certify_keys(&list, player).unwrap()
+}

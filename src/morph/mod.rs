@@ -44,6 +44,10 @@ pub struct MorphOptions {
     /// Margin ε (radians) the hybrid path keeps below 2π in every vertex
     /// fan. Default: 0.05.
     pub fan_margin: f64,
+    /// Whether the last leg races the other paths against `path`
+    /// (docs/design.md §7c); false where [`Tween::new`] plans one path
+    /// alone to certify the keys (§13).
+    pub(crate) rivals: bool,
 }
 
 impl MorphOptions {
@@ -52,6 +56,7 @@ impl MorphOptions {
         path: ThirdVertexPath::Rigid,
         root: RootChoice::Disk,
         fan_margin: DEFAULT_FAN_MARGIN,
+        rivals: true,
     };
 
     /// Sets the third-vertex path.

@@ -780,6 +780,7 @@ fn sides_beside<R: Send>(
             t_other: to,
             leg_path,
             final_path: m.path,
+            rivals: m.rivals,
             root: m.root,
             margin: m.fan_margin,
             intermediate: options.intermediate,

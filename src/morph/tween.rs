@@ -28,7 +28,7 @@ use crate::morph::area_and_centroid;
 use crate::morph::plan::{CurveMorphError, CurveMorphOptions, MorphReport, Side, plan};
 use crate::morph::staged::{KEY_AREA_TOLERANCE, Leg, moves};
 use crate::morph::{Fallback, Frame, Morph};
-use crate::morph::{MorphError, Staged, ThirdVertexPath};
+use crate::morph::{MorphError, MorphOptions, Staged, ThirdVertexPath};
 use std::cell::OnceCell;
 
 /// One key of a morph's animation: the shape at fraction `t` of the pace
@@ -109,6 +109,40 @@ impl Tween {
         options: &CurveMorphOptions,
     ) -> Result<Tween, CurveMorphError> {
         options.validate()?;
+        let tween = Self::chosen(a, b, options)?;
+        if tween.is_certified() {
+            return Ok(tween);
+        }
+        // Where the keys of the plan chosen for its motion cannot all be
+        // certified (docs/design.md §13: a path that squeezes thin
+        // triangles or small features below what the keys' doubles can
+        // hold between two keys), the morph is planned again by other
+        // routes, in order, and the first whose keys are all certified is
+        // kept, saying so; where none is, the first plan stays (its frames
+        // are still checked exactly).
+        let (bad, total) = tween.uncertified_segments();
+        let why = format!(
+            "the keys of the {} path left {bad} of {total} segments uncertified (a straight segment between two keys was not shown to stay an immersed disk)",
+            crate::morph::output::path_names(&tween.report.paths)
+        );
+        for (alternative, what) in certifying_routes(options) {
+            if let Ok(mut other) = Self::planned(a, b, &alternative, true)
+                && other.is_certified()
+            {
+                other.report.fallbacks.push(Fallback::new(&what, &why));
+                return Ok(other);
+            }
+        }
+        Ok(tween)
+    }
+
+    /// The plan chosen for its motion: [`Tween::raced`], and the min-flips
+    /// rule raced in where the best correspondence's plan unwinds.
+    fn chosen(
+        a: &[Point],
+        b: &[Point],
+        options: &CurveMorphOptions,
+    ) -> Result<Tween, CurveMorphError> {
         let (tween, unwind) = Self::raced(a, b, options)?;
         // The best correspondence keeps the plan whose vertices travel
         // least. Where that plan still undoes the overlaps both curves
@@ -140,7 +174,7 @@ impl Tween {
         b: &[Point],
         options: &CurveMorphOptions,
     ) -> Result<(Tween, f64), CurveMorphError> {
-        let tween = Self::planned(a, b, options)?;
+        let tween = Self::planned(a, b, options, false)?;
         let unwind = tween.key_unwind();
         // The rigid path interpolates each triangle's rotation, so a corner
         // that turns one way on one curve and the other way on the other
@@ -152,7 +186,7 @@ impl Tween {
         // stays continuous.
         if options.morph.path == ThirdVertexPath::Rigid && unwind < KEPT_TURNING {
             let straight = options.with_morph(options.morph.with_path(ThirdVertexPath::Straight));
-            if let Ok(other) = Self::planned(a, b, &straight) {
+            if let Ok(other) = Self::planned(a, b, &straight, false) {
                 let other_unwind = other.key_unwind();
                 if other_unwind >= KEPT_TURNING
                     && other.staged.mean_travel() <= RACE_TRAVEL * tween.staged.mean_travel()
@@ -213,11 +247,14 @@ impl Tween {
         if ends > 0.0 { least / ends } else { 1.0 }
     }
 
-    /// Plans the morph with exactly the options given.
+    /// Plans the morph with exactly the options given; `strict` stops
+    /// placing keys at the first segment they cannot certify (the tween is
+    /// then not certified, and only good for being dropped).
     fn planned(
         a: &[Point],
         b: &[Point],
         options: &CurveMorphOptions,
+        strict: bool,
     ) -> Result<Tween, CurveMorphError> {
         let (prepared, mut sides) = plan(a, b, options)?;
         let mut fallbacks = prepared.fallbacks.clone();
@@ -299,7 +336,7 @@ impl Tween {
                         ),
                     ));
                     fallbacks.extend(p.fallbacks.iter().cloned());
-                    return Tween::finish(p.a.len(), s, &retry, fallbacks);
+                    return Tween::finish(p.a.len(), s, &retry, fallbacks, strict);
                 }
             }
         }
@@ -315,7 +352,7 @@ impl Tween {
             ));
             sides.use_a = sides.a.is_ok();
         }
-        Tween::finish(n, sides, options, fallbacks)
+        Tween::finish(n, sides, options, fallbacks, strict)
     }
 
     fn finish(
@@ -323,6 +360,7 @@ impl Tween {
         sides: crate::morph::plan::Sides,
         options: &CurveMorphOptions,
         mut fallbacks: Vec<Fallback>,
+        strict: bool,
     ) -> Result<Tween, CurveMorphError> {
         let star = |s: &crate::morph::plan::SideResult| match s {
             Ok(Some(s)) => s.u_star,
@@ -356,11 +394,16 @@ impl Tween {
                 .legs
                 .par_iter_mut()
                 .map(|leg| {
-                    let bridges = leg.refine_keys(tol);
+                    // (A strict plan left uncertified is dropped: its
+                    // keys are not merged or repaired.)
+                    let bridges = leg.refine_keys(tol, strict)?;
                     merge_keys(leg, tol);
                     leg.repair_keys();
-                    bridges
+                    Some(bridges)
                 })
+                .collect::<Vec<_>>()
+                .into_iter()
+                .map(|b| b.unwrap_or(0))
                 .collect()
         };
         fallbacks.extend(staged.fallbacks.iter().cloned());
@@ -454,6 +497,13 @@ impl Tween {
             .iter()
             .map(|l| l.keys.len().saturating_sub(1))
             .sum::<usize>()
+    }
+
+    /// The key segments left uncertified, and all of them.
+    fn uncertified_segments(&self) -> (usize, usize) {
+        let segments = self.staged.legs.iter().flat_map(|l| &l.certified);
+        let total = segments.clone().count();
+        (segments.filter(|&&c| !c).count(), total)
     }
 
     /// Whether every segment between two keys is certified an immersion
@@ -789,6 +839,70 @@ const NUDGE_REACH: f64 = 1.0 / (1u64 << 20) as f64;
 
 /// The fractions near `w` ∈ [0, 1] to try for a frame, nearest first: at
 /// distances 2⁻⁴⁴, 2⁻⁴², … up to `reach`, on either side, within [0, 1].
+/// The routes [`Tween::new`] tries, in order, where the keys of the plan
+/// chosen for its motion cannot all be certified: each guaranteed path
+/// alone (without the last leg's race), with the options' correspondence
+/// and, where that is `best`, with each of its rules; then with the other
+/// intermediate, and with the max–min-angle triangulations. Each comes
+/// with what the report says of it. Each is planned strictly: its keys
+/// stop at the first segment no flip certifies, so a route that fails
+/// costs little more than its planning (docs/motion.md has what each
+/// route certifies on the stress pairs).
+fn certifying_routes(options: &CurveMorphOptions) -> Vec<(CurveMorphOptions, String)> {
+    use crate::morph::{Correspondence, Intermediate};
+    use crate::quality::Quality;
+    let paths = [
+        ThirdVertexPath::Rigid,
+        ThirdVertexPath::Straight,
+        ThirdVertexPath::Hybrid,
+    ];
+    let mut rules = vec![options.correspondence];
+    if options.correspondence == Correspondence::Best {
+        rules.extend([Correspondence::MinFlips, Correspondence::Corners]);
+    }
+    let other = match options.intermediate {
+        Intermediate::Disk => Intermediate::Target,
+        Intermediate::Target => Intermediate::Disk,
+    };
+    let mut routes: Vec<(CurveMorphOptions, String)> = rules
+        .iter()
+        .map(|&rule| {
+            let said = if rule == options.correspondence {
+                String::new()
+            } else {
+                format!(", the {} rule", rule.as_str())
+            };
+            (options.with_correspondence(rule), said)
+        })
+        .collect();
+    routes.push((
+        options.with_intermediate(other),
+        format!(", the {} intermediate", other.as_str()),
+    ));
+    if options.quality != Quality::MaxMin {
+        routes.push((
+            options.with_quality(Quality::MaxMin),
+            ", the max–min-angle triangulations".to_string(),
+        ));
+    }
+    routes
+        .into_iter()
+        .flat_map(|(route, said)| {
+            paths.into_iter().map(move |path| {
+                let morph = MorphOptions {
+                    path,
+                    rivals: false,
+                    ..route.morph
+                };
+                (
+                    route.with_morph(morph),
+                    format!("planned the morph again with the {path} path alone{said}"),
+                )
+            })
+        })
+        .collect()
+}
+
 fn nudges(w: f64, reach: f64) -> impl Iterator<Item = f64> {
     (0..)
         .map(|i| (-44.0 + 2.0 * f64::from(i)).exp2())

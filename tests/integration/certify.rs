@@ -886,3 +886,39 @@ fn segments_a_thin_triangle_leaves_uncertified_are_flipped_and_certified() {
         assert!(checked >= 1, "pair {index}");
     }
 }
+
+/// Stress pairs whose keys, on the plan chosen for its motion, cannot all
+/// be certified (on pair 440, wedge → blob, the rigid path squeezes a
+/// triangle below what the keys' doubles can hold: 32 segments were left
+/// uncertified) are planned again by another route whose keys are all
+/// certified, and the report says so: every segment is certified by the
+/// certificate and by the independent checker.
+#[test]
+fn keys_left_uncertified_are_planned_again_by_a_route_that_certifies() {
+    use immerse::morph::{CurveMorphOptions, Tween};
+    for index in [261, 440] {
+        let pair = testkit::stress::pair(0xbee5, index);
+        let tw = Tween::new(&pair.source, &pair.target, &CurveMorphOptions::default()).unwrap();
+        assert!(tw.is_certified(), "pair {index}");
+        let again = tw
+            .report()
+            .fallbacks
+            .iter()
+            .find(|f| f.what.starts_with("planned the morph again"));
+        let again = again.unwrap_or_else(|| panic!("pair {index}: {:?}", tw.report().fallbacks));
+        assert!(
+            again.why.contains("segments uncertified"),
+            "pair {index}: {again:?}"
+        );
+        let keys = tw.keyframes();
+        let report = crate::util::certify_keyframes(&keys, Player::Exact);
+        assert!(report.is_certified(), "pair {index}: {report:?}");
+        for (k, w) in keys.windows(2).enumerate() {
+            assert_eq!(
+                checker(&w[0].points, &w[1].points, &w[0].triangles),
+                None,
+                "pair {index}, segment {k}"
+            );
+        }
+    }
+}

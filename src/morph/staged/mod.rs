@@ -153,11 +153,16 @@ impl Leg {
     /// planned between its two keys on the same triangulation (a bridge),
     /// split and certified in the same way. Segments left uncertified are
     /// marked in [`Leg::certified`] (frames on them are checked exactly,
-    /// with the bridge and the path as recovery). Returns the number of bridges.
-    pub(crate) fn refine_keys(&mut self, tol: f64) -> usize {
+    /// with the bridge and the path as recovery). Returns the number of
+    /// bridges; `None` when `strict` and a segment is left uncertified
+    /// that no flip of its triangulation certifies
+    /// (`crate::certify::flip_to_certify`): the keys then stop there (a
+    /// plan tried only for keys that are all certified is dropped at
+    /// once, [`crate::morph::Tween::new`]).
+    pub(crate) fn refine_keys(&mut self, tol: f64, strict: bool) -> Option<usize> {
         let old_samples = std::mem::take(&mut self.samples);
         let old_keys = std::mem::take(&mut self.keys);
-        let out = self.keys_along(&old_samples, &old_keys, tol, &|s| {
+        let out = self.keys_along(&old_samples, &old_keys, tol, strict, &|s| {
             self.plan.positions(s, self.path)
         });
         let KeyOut {
@@ -165,6 +170,7 @@ impl Leg {
             keys,
             certified,
             bridges,
+            aborted,
             ..
         } = out;
         let mut travel = Vec::with_capacity(keys.len());
@@ -178,7 +184,7 @@ impl Leg {
         self.travel = travel;
         self.certified = certified;
         self.repaired.clear();
-        bridges
+        (!aborted).then_some(bridges)
     }
 
     /// The triangulation of the segment from key `k` to the next: the
@@ -231,6 +237,7 @@ impl Leg {
         old_samples: &[f64],
         old_keys: &[Vec<Point>],
         tol: f64,
+        strict: bool,
         path: &dyn Fn(f64) -> Vec<Point>,
     ) -> KeyOut {
         let tris = self.plan.triangles().to_vec();
@@ -241,9 +248,14 @@ impl Leg {
             bridges: 0,
             budget: MAX_KEY_SPLITS.saturating_mul(old_samples.len()),
             cert_budget: MAX_KEY_SPLITS.saturating_mul(old_samples.len()),
+            strict,
+            aborted: false,
         };
         let total_area = area_and_centroid(&old_keys[0], &tris).0.abs();
         for i in 1..old_samples.len() {
+            if out.aborted {
+                break;
+            }
             let (a, b) = (
                 (old_samples[i - 1], old_keys[i - 1].as_slice()),
                 (old_samples[i], old_keys[i].as_slice()),
@@ -307,6 +319,9 @@ impl Leg {
         path: &dyn Fn(f64) -> Vec<Point>,
         bridged: bool,
     ) {
+        if out.aborted {
+            return;
+        }
         let certified = || {
             crate::certify::certify_segment(a.1, b.1, tris, crate::certify::Player::Exact)
                 .is_ok_and(|r| r.is_certified())
@@ -354,7 +369,7 @@ impl Leg {
                     // (Without the follow budget, the segment was found
                     // uncertified above.)
                     if out.cert_budget == 0 {
-                        out.push(b, false);
+                        out.push_uncertified(a.1, b, tris);
                         return;
                     }
                     out.cert_budget -= 1;
@@ -393,7 +408,11 @@ impl Leg {
                 return;
             }
         }
-        out.push(b, certified());
+        if certified() {
+            out.push(b, true);
+        } else {
+            out.push_uncertified(a.1, b, tris);
+        }
     }
 }
 
@@ -449,6 +468,10 @@ struct KeyOut {
     budget: usize,
     /// Splits left to certify segments.
     cert_budget: usize,
+    /// Whether a segment left uncertified that no flip certifies ends the
+    /// keys ([`Leg::refine_keys`]), and whether one did.
+    strict: bool,
+    aborted: bool,
 }
 
 impl KeyOut {
@@ -458,6 +481,19 @@ impl KeyOut {
         self.certified.push(certified);
         self.samples.push(b.0);
         self.keys.push(b.1.to_vec());
+    }
+
+    /// Appends the key `b` ending an uncertified segment from `a` under
+    /// `tris`; when strict, ends the keys unless a flip of the
+    /// triangulation certifies the segment (as [`Leg::repair_keys`] would).
+    fn push_uncertified(&mut self, a: &[Point], b: (f64, &[Point]), tris: &[[u32; 3]]) {
+        if self.strict
+            && crate::certify::flip_to_certify(a, b.1, tris, crate::certify::Player::Exact)
+                .is_none()
+        {
+            self.aborted = true;
+        }
+        self.push(b, false);
     }
 }
 
@@ -594,6 +630,9 @@ pub(crate) struct SideInput<'a> {
     /// The path of the legs toward intermediates and of the last leg.
     pub(crate) leg_path: ThirdVertexPath,
     pub(crate) final_path: ThirdVertexPath,
+    /// Whether the last leg races other paths against `final_path`
+    /// ([`crate::morph::MorphOptions`]).
+    pub(crate) rivals: bool,
     pub(crate) root: RootChoice,
     pub(crate) margin: f64,
     pub(crate) intermediate: crate::morph::Intermediate,
@@ -985,7 +1024,7 @@ fn last_leg(
     // kept, unless it unwinds overlaps another keeps (`Leg::beats`); each
     // rival is given up as soon as it cannot win, and the polar path is
     // tried only where the straight leg did not win over the hybrid one.
-    let rigid = inp.final_path == ThirdVertexPath::Rigid;
+    let rigid = inp.final_path == ThirdVertexPath::Rigid && inp.rivals;
     let mut candidates = if rigid {
         // Straight first: it usually travels least, and the rigid rival is
         // then given up as soon as it cannot win (same choice, less work).
@@ -999,7 +1038,7 @@ fn last_leg(
     } else {
         recovery_paths(inp.final_path)
     };
-    let compete = inp.final_path == ThirdVertexPath::Straight || rigid;
+    let compete = inp.rivals && (inp.final_path == ThirdVertexPath::Straight || rigid);
     let last_rival = ThirdVertexPath::Polar;
     let mut best: Option<(Leg, usize)> = None;
     // The first path when it passed the limit before a rival was tried.
@@ -1262,7 +1301,7 @@ mod tests {
         assert!(check_triangles(&chord(0.5), &tris).is_err());
         let plan = Compatible::new(&a, &b, &tris, RootChoice::Disk, 0.0).unwrap();
         let leg = Leg::start(plan, ThirdVertexPath::Straight);
-        let out = leg.keys_along(&[0.0, 1.0], &[a.clone(), b.clone()], 0.01, &chord);
+        let out = leg.keys_along(&[0.0, 1.0], &[a.clone(), b.clone()], 0.01, false, &chord);
         assert!(out.bridges >= 1, "no bridge");
         assert_eq!(out.keys.first(), Some(&a));
         assert_eq!(out.keys.last(), Some(&b));
@@ -1319,6 +1358,7 @@ mod tests {
             t_other: tb,
             leg_path: ThirdVertexPath::Hybrid,
             final_path: ThirdVertexPath::Hybrid,
+            rivals: true,
             root: RootChoice::Disk,
             margin: 0.05,
             intermediate,

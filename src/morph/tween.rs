@@ -57,6 +57,14 @@ const KEPT_TURNING: f64 = 0.9;
 /// §7b): a plan raced in for its unwind ([`Tween::new`]) must keep to it.
 const DETOUR_GATE: f64 = 3.0;
 
+/// The longest edge a motion may reach, over the ends' longest
+/// (docs/design.md §7c).
+const SPIKE_GATE: f64 = 2.0;
+
+/// The total area range a motion keeps to, against the smaller and the
+/// larger end's (docs/design.md §7c).
+const AREA_GATE: (f64, f64) = (0.8, 1.15);
+
 /// How much farther the straight morph's vertices may travel than the
 /// rigid one's for it to be kept instead ([`Tween::new`]).
 const RACE_TRAVEL: f64 = 1.5;
@@ -117,23 +125,81 @@ impl Tween {
         // certified (docs/design.md §13: a path that squeezes thin
         // triangles or small features below what the keys' doubles can
         // hold between two keys), the morph is planned again by other
-        // routes, in order, and the first whose keys are all certified is
-        // kept, saying so; where none is, the first plan stays (its frames
-        // are still checked exactly).
+        // routes, in order, and the first whose keys are all certified and
+        // whose motion misses no gate of docs/design.md §7c that the first
+        // plan's meets is kept, saying so; where none is, the first plan
+        // stays (its frames are still checked exactly).
         let (bad, total) = tween.uncertified_segments();
         let why = format!(
             "the keys of the {} path left {bad} of {total} segments uncertified (a straight segment between two keys was not shown to stay an immersed disk)",
             crate::morph::output::path_names(&tween.report.paths)
         );
+        let first = OnceCell::new();
         for (alternative, what) in certifying_routes(options) {
             if let Ok(mut other) = Self::planned(a, b, &alternative, true)
                 && other.is_certified()
+                && other.moves_no_worse(first.get_or_init(|| tween.motion()))
             {
                 other.report.fallbacks.push(Fallback::new(&what, &why));
                 return Ok(other);
             }
         }
         Ok(tween)
+    }
+
+    /// The measures of docs/design.md §7c of the motion, from its frames
+    /// at 40, 320 and 2,560 evenly spaced times; `None` where the frames
+    /// cannot be made.
+    fn motion(&self) -> Option<Motion> {
+        let frames = |k: usize| -> Option<Vec<Frame>> {
+            let t: Vec<f64> = (0..k).map(|i| i as f64 / (k - 1) as f64).collect();
+            self.morph(&t).ok().map(|m| m.frames)
+        };
+        let step = |k: usize| frames(k).and_then(|f| crate::frames::view_measures(&f));
+        let (coarse, fine) = (step(40)?.max_step, step(2560)?.max_step);
+        let f = frames(320)?;
+        let v = crate::frames::view_measures(&f)?;
+        // A step that keeps its size as frames are added is a jump.
+        let shrinks = |a: f64, b: f64| b <= a / 4.0 || b < 0.01;
+        Some(Motion {
+            jumps: !(shrinks(coarse, v.max_step) && shrinks(v.max_step, fine)),
+            edge: v.edge_ratio,
+            area: (v.area_low, v.area_high),
+            detour: crate::frames::detour(&f),
+            unwind: crate::frames::unwind(&f),
+        })
+    }
+
+    /// Whether this motion misses none of the gates of docs/design.md
+    /// §7c that `first` meets, and where `first` misses one, is no worse
+    /// there than it.
+    fn moves_no_worse(&self, first: &Option<Motion>) -> bool {
+        let (Some(m), Some(f)) = (self.motion(), first) else {
+            return first.is_none();
+        };
+        let keeps = |ok: bool, was_ok: bool, no_worse: bool| ok || (!was_ok && no_worse);
+        keeps(!m.jumps, !f.jumps, true)
+            && keeps(m.edge <= SPIKE_GATE, f.edge <= SPIKE_GATE, m.edge <= f.edge)
+            && keeps(
+                m.area.0 >= AREA_GATE.0,
+                f.area.0 >= AREA_GATE.0,
+                m.area.0 >= f.area.0,
+            )
+            && keeps(
+                m.area.1 <= AREA_GATE.1,
+                f.area.1 <= AREA_GATE.1,
+                m.area.1 <= f.area.1,
+            )
+            && keeps(
+                m.detour <= DETOUR_GATE,
+                f.detour <= DETOUR_GATE,
+                m.detour <= f.detour,
+            )
+            && keeps(
+                m.unwind >= KEPT_TURNING,
+                f.unwind >= KEPT_TURNING,
+                m.unwind >= f.unwind,
+            )
     }
 
     /// The plan chosen for its motion: [`Tween::raced`], and the min-flips
@@ -839,6 +905,21 @@ const NUDGE_REACH: f64 = 1.0 / (1u64 << 20) as f64;
 
 /// The fractions near `w` ∈ [0, 1] to try for a frame, nearest first: at
 /// distances 2⁻⁴⁴, 2⁻⁴², … up to `reach`, on either side, within [0, 1].
+/// The measures of docs/design.md §7c that [`Tween::new`] holds a route
+/// to ([`Tween::motion`]).
+#[derive(Clone, Copy, Debug)]
+struct Motion {
+    /// Whether the largest single-vertex step fails to shrink with the
+    /// frame count.
+    jumps: bool,
+    /// Longest edge over the ends' longest.
+    edge: f64,
+    /// Least and most total area over the smaller and the larger end's.
+    area: (f64, f64),
+    detour: f64,
+    unwind: f64,
+}
+
 /// The routes [`Tween::new`] tries, in order, where the keys of the plan
 /// chosen for its motion cannot all be certified: each guaranteed path
 /// alone (without the last leg's race), with the options' correspondence

@@ -92,6 +92,7 @@ pub use read::{
 use exact::{Alg, Quad, Scaled, fan_ok, first_nonpositive, positive_on};
 use num_bigint::BigInt;
 use rayon::prelude::*;
+pub use repair::certified_triangulation;
 pub(crate) use repair::flip_to_certify;
 
 use crate::geom::Point;
@@ -411,54 +412,30 @@ pub fn certify_span(
             ..SegmentReport::default()
         });
     }
-    let whole = s0 == 0.0 && s1 == 1.0;
-    let span = Span {
-        p: start,
-        q: end,
-        l: Alg::from_f64(s0),
-        r: Alg::from_f64(s1),
-        shift: player.shift(),
-        deltas: filter::deltas(start, end, player.shift()),
-    };
+    let span = Span::new(start, end, s0, s1, player);
     let mut report = SegmentReport::default();
     let mut found = Vec::new();
     for (index, &[a, b, c]) in triangles.iter().enumerate() {
-        let corners = [a as usize, b as usize, c as usize];
-        if whole && filter::triangle(start, end, corners, &span.deltas) {
-            continue;
-        }
-        report.exact_triangles += 1;
-        if let Err(bad) = span.triangle(corners, span.shift) {
-            let within_margin = span.shift.is_some() && span.triangle(corners, None).is_ok();
-            // The margin of the whole span overstates it where an edge
-            // shrinks inside the span: taken piece by piece instead.
-            if within_margin
-                && filter::triangle_in_pieces(start, end, corners, &span.deltas, [s0, s1])
-            {
-                continue;
+        match span.triangle_holds([a as usize, b as usize, c as usize]) {
+            Holds::Filtered => {}
+            Holds::Exactly => report.exact_triangles += 1,
+            Holds::No(bad, within_margin) => {
+                report.exact_triangles += 1;
+                report.failing_triangles += 1;
+                found.push(Found {
+                    defect: Defect::Triangle {
+                        index,
+                        corners: [a, b, c],
+                    },
+                    lo: bad.clone(),
+                    hi: bad,
+                    within_margin,
+                });
             }
-            report.failing_triangles += 1;
-            found.push(Found {
-                defect: Defect::Triangle {
-                    index,
-                    corners: [a, b, c],
-                },
-                lo: bad.clone(),
-                hi: bad,
-                within_margin,
-            });
         }
     }
     for v in 0..n {
-        if whole && filter::fan(start, end, v, &span.deltas) {
-            continue;
-        }
-        report.exact_fans += 1;
-        if let Err(bad) = span.fan(v, span.shift) {
-            let within_margin = span.shift.is_some() && span.fan(v, None).is_ok();
-            if within_margin && filter::fan_in_pieces(start, end, v, &span.deltas, [s0, s1]) {
-                continue;
-            }
+        if let Some((bad, within_margin)) = span.fan_fails(v, &mut report.exact_fans) {
             report.failing_fans += 1;
             found.push(Found {
                 defect: Defect::Fan { vertex: v },
@@ -470,6 +447,18 @@ pub fn certify_span(
     }
     report.failure = earliest(found, s0, s1);
     Ok(report)
+}
+
+/// Whether a triangle stays counter-clockwise (with the player's margin)
+/// on a span, and how that was decided.
+enum Holds {
+    /// By the floating-point filter.
+    Filtered,
+    /// In exact arithmetic.
+    Exactly,
+    /// Not: the first s where it fails, and whether only the player's
+    /// margin fails there.
+    No(Alg, bool),
 }
 
 /// One failing triangle or fan, located exactly.
@@ -517,12 +506,14 @@ fn earliest(found: Vec<Found>, s0: f64, s1: f64) -> Option<Failure> {
     best.map(|b| b.0)
 }
 
-/// The motion `p(s) = p + s(q − p)` on `[l, r]`, for exact tests.
+/// The motion `p(s) = p + s(q − p)` on `[l, r]` (`s0` and `s1` as
+/// doubles), for exact tests.
 struct Span<'a> {
     p: &'a [Point],
     q: &'a [Point],
     l: Alg,
     r: Alg,
+    s: [f64; 2],
     shift: Option<i32>,
     deltas: Vec<f64>,
 }
@@ -536,6 +527,19 @@ struct Ints {
 }
 
 impl<'a> Span<'a> {
+    /// The motion from `p` to `q` on `[s0, s1]`, against `player`.
+    fn new(p: &'a [Point], q: &'a [Point], s0: f64, s1: f64, player: Player) -> Span<'a> {
+        Span {
+            p,
+            q,
+            l: Alg::from_f64(s0),
+            r: Alg::from_f64(s1),
+            s: [s0, s1],
+            shift: player.shift(),
+            deltas: filter::deltas(p, q, player.shift()),
+        }
+    }
+
     /// The exact shape at the one time `s` (no player margin).
     fn at(p: &'a [Point], q: &'a [Point], s: f64) -> Span<'a> {
         Span {
@@ -543,9 +547,54 @@ impl<'a> Span<'a> {
             q,
             l: Alg::from_f64(s),
             r: Alg::from_f64(s),
+            s: [s, s],
             shift: None,
             deltas: Vec::new(),
         }
+    }
+
+    fn whole(&self) -> bool {
+        self.s == [0.0, 1.0]
+    }
+
+    /// Whether the triangle with these corners stays counter-clockwise on
+    /// the span, with the player's margin: the filter first (on the whole
+    /// segment), then exact arithmetic; where only the margin fails, the
+    /// margin is taken piece by piece (it overstates the margin where an
+    /// edge shrinks inside the span).
+    fn triangle_holds(&self, corners: [usize; 3]) -> Holds {
+        if self.whole() && filter::triangle(self.p, self.q, corners, &self.deltas) {
+            return Holds::Filtered;
+        }
+        let Err(bad) = self.triangle(corners, self.shift) else {
+            return Holds::Exactly;
+        };
+        let within_margin = self.shift.is_some() && self.triangle(corners, None).is_ok();
+        if within_margin
+            && filter::triangle_in_pieces(self.p, self.q, corners, &self.deltas, self.s)
+        {
+            return Holds::Exactly;
+        }
+        Holds::No(bad, within_margin)
+    }
+
+    /// Where the fan at `v` reaches a full turn on the span (with the
+    /// player's margin), and whether only the margin fails there; `None`
+    /// when it does not. Counts in `exact` a fan the filter left to exact
+    /// arithmetic. The fan's edges are the curve's own, so the answer
+    /// does not depend on the triangulation (while its triangles stay
+    /// counter-clockwise).
+    fn fan_fails(&self, v: usize, exact: &mut usize) -> Option<(exact::Bad, bool)> {
+        if self.whole() && filter::fan(self.p, self.q, v, &self.deltas) {
+            return None;
+        }
+        *exact += 1;
+        let bad = self.fan(v, self.shift).err()?;
+        let within_margin = self.shift.is_some() && self.fan(v, None).is_ok();
+        if within_margin && filter::fan_in_pieces(self.p, self.q, v, &self.deltas, self.s) {
+            return None;
+        }
+        Some((*bad, within_margin))
     }
 
     /// Integers for the vertices `vs` (with δ_v when `shift` is given).

@@ -1,8 +1,10 @@
 //! Certifying a straight-line motion that comes without a triangulation
 //! (docs/design.md §13): triangulate where a piece starts, certify as far
-//! as that triangulation holds, triangulate again just before it fails,
-//! and go on; a shape that is not self-overlapping at an exact s ends the
-//! search with a definite "invalid".
+//! as that triangulation holds; where it fails, look for a triangulation
+//! that holds for the whole segment (`certified_triangulation`, exact),
+//! else triangulate again just before the failure, and go on; a shape
+//! that is not self-overlapping at an exact s ends the search with a
+//! definite "invalid".
 //!
 //! Shapes inside a segment are rational (`p(s)` for a dyadic s), not
 //! `f64`, so deciding self-overlap there needs the triangulation DP of
@@ -197,6 +199,17 @@ pub fn certify_motion(
                 break;
             }
             triangulate_now = true;
+        }
+        // Where no triangulation tried so far holds for the whole
+        // segment, one that does is looked for among all of them (exactly:
+        // `certified_triangulation`) before the segment is cut into
+        // pieces.
+        if s == 0.0
+            && best.as_ref().is_some_and(|b| b.2.is_some())
+            && let Some(t) = super::certified_triangulation(start, end, player)
+        {
+            report.triangulations += 1;
+            best = Some((t, Source::Triangulated, None));
         }
         let Some((triangles, source, failure)) = best else {
             report.verdict = Verdict::Undecided {

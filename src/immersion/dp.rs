@@ -273,8 +273,14 @@ impl Table {
 
     /// The smallest valid apex of a true cell (the witness's choice):
     /// valid on `curves[0]` (the table's curve) and on each other curve
-    /// of a common decision.
-    fn apex(&self, curves: &[&[Point]], i: usize, j: usize) -> Option<usize> {
+    /// of a common decision, and passing `keep`.
+    fn apex(
+        &self,
+        curves: &[&[Point]],
+        keep: &(dyn Fn(usize, usize, usize) -> bool + Sync),
+        i: usize,
+        j: usize,
+    ) -> Option<usize> {
         let points = curves[0];
         let mut found = None;
         self.for_candidates(points, i, j, |k, ccw| {
@@ -283,6 +289,7 @@ impl Table {
                     .iter()
                     .zip(&self.others)
                     .all(|(c, planes)| planes.is_valid(c, i, k, j))
+                && keep(i, k, j)
             {
                 found = Some(k);
             }
@@ -368,15 +375,23 @@ pub(crate) fn decide(points: &[Point], progress: &mut dyn FnMut(f64)) -> Table {
 /// is the decision DP of the module docs.
 pub(crate) fn decide_common(curves: &[&[Point]], progress: &mut dyn FnMut(f64)) -> Table {
     let planes = curves.iter().map(|c| HalfPlanes::new(c)).collect();
-    decide_common_with(curves, planes, progress)
+    decide_common_with(curves, planes, &ANY, progress)
 }
+
+/// A triangle test that keeps every triangle: the plain decision.
+pub(crate) const ANY: fn(usize, usize, usize) -> bool = |_, _, _| true;
 
 /// [`decide_common`] with the half-plane masks of every curve given (in
 /// the order of `curves`): a search over relabellings of one curve
-/// computes them once and rotates them ([`HalfPlanes::rotated`]).
+/// computes them once and rotates them ([`HalfPlanes::rotated`]). A
+/// triangle `(i, k, j)`, `i < k < j`, counts only where it is valid on
+/// every curve and `keep(i, k, j)` holds too (a further test of the
+/// caller's: [`ANY`] for none); the witness must be taken with the same
+/// `keep`.
 pub(crate) fn decide_common_with(
     curves: &[&[Point]],
     mut planes: Vec<HalfPlanes>,
+    keep: &(dyn Fn(usize, usize, usize) -> bool + Sync),
     progress: &mut dyn FnMut(f64),
 ) -> Table {
     let points = curves[0];
@@ -394,7 +409,7 @@ pub(crate) fn decide_common_with(
         table.set(i, i + 1);
     }
     fill_by_tiles(n, progress, |i, j| {
-        if table.may_be_diagonal(i, j) && table.apex(curves, i, j).is_some() {
+        if table.may_be_diagonal(i, j) && table.apex(curves, keep, i, j).is_some() {
             table.set(i, j);
         }
     });
@@ -404,19 +419,24 @@ pub(crate) fn decide_common_with(
 /// A triangulation of the whole polygon from a filled table, or `None` when
 /// `Q[0][n−1]` is false. Triangles come out as `[i, k, j]`, `i < k < j`.
 pub(crate) fn witness(points: &[Point], table: &Table) -> Option<Vec<[u32; 3]>> {
-    witness_common(&[points], table)
+    witness_common(&[points], table, &ANY)
 }
 
-/// [`witness`] for a table of [`decide_common`]: every triangle is valid on
-/// every curve.
-pub(crate) fn witness_common(curves: &[&[Point]], table: &Table) -> Option<Vec<[u32; 3]>> {
+/// [`witness`] for a table of [`decide_common_with`]: every triangle is
+/// valid on every curve and passes `keep` (the test the table was filled
+/// with).
+pub(crate) fn witness_common(
+    curves: &[&[Point]],
+    table: &Table,
+    keep: &(dyn Fn(usize, usize, usize) -> bool + Sync),
+) -> Option<Vec<[u32; 3]>> {
     let n = curves[0].len();
     if n < 3 || !table.get(0, n - 1) {
         return None;
     }
     from_apexes(n, |i, j| {
         debug_assert!(table.get(i, j), "the witness reached a false cell: a bug");
-        table.apex(curves, i, j)
+        table.apex(curves, keep, i, j)
     })
 }
 

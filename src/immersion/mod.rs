@@ -331,8 +331,8 @@ pub(crate) fn common_triangulation_with(
         return None;
     }
     let planes = masks.into_iter().map(|m| m.0).collect();
-    let table = dp::decide_common_with(curves, planes, &mut |_| {});
-    let mut triangles = dp::witness_common(curves, &table)?;
+    let table = dp::decide_common_with(curves, planes, &dp::ANY, &mut |_| {});
+    let mut triangles = dp::witness_common(curves, &table, &dp::ANY)?;
     triangles.sort_unstable();
     Some(triangles)
 }

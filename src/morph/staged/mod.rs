@@ -341,6 +341,9 @@ impl Leg {
             // point of the path inside the segment.
             let inside = SPLIT_AT.iter().find_map(|&f| {
                 let sm = a.0 + f * (b.0 - a.0);
+                if sm <= a.0 || sm >= b.0 {
+                    return None;
+                }
                 let pm = path(sm);
                 check_triangles(&pm, tris).is_ok().then_some((sm, pm))
             });

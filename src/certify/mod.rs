@@ -379,6 +379,60 @@ pub fn certify_segment(
     certify_span(start, end, triangles, 0.0, 1.0, player)
 }
 
+/// Whether [`certify_segment`] certifies the motion: the same answer,
+/// reached sooner where it is no. Every triangle and fan is first taken
+/// without the pieces that a margin failure calls for, so a triangle that
+/// the exact motion turns over answers at once; the pieces are tried
+/// last, on those that fail only with the player's margin. False also
+/// for input [`certify_segment`] refuses.
+pub(crate) fn segment_holds(
+    start: &[Point],
+    end: &[Point],
+    triangles: &[[u32; 3]],
+    player: Player,
+) -> bool {
+    if check_input(start, end, 0.0, 1.0).is_err() || check(start, triangles).is_err() {
+        return false;
+    }
+    let span = Span::new(start, end, 0.0, 1.0, player);
+    let margin_only = |exact: Result<(), ()>, without_margin: &dyn Fn() -> bool| match exact {
+        Ok(()) => Some(false),
+        Err(()) if span.shift.is_some() && without_margin() => Some(true),
+        Err(()) => None,
+    };
+    let mut later_triangles = Vec::new();
+    for &[a, b, c] in triangles {
+        let corners = [a as usize, b as usize, c as usize];
+        if filter::triangle(start, end, corners, &span.deltas) {
+            continue;
+        }
+        let exact = span.triangle(corners, span.shift).map_err(|_| ());
+        match margin_only(exact, &|| span.triangle(corners, None).is_ok()) {
+            Some(false) => {}
+            Some(true) => later_triangles.push(corners),
+            None => return false,
+        }
+    }
+    let mut later_fans = Vec::new();
+    for v in 0..start.len() {
+        if filter::fan(start, end, v, &span.deltas) {
+            continue;
+        }
+        let exact = span.fan(v, span.shift).map_err(|_| ());
+        match margin_only(exact, &|| span.fan(v, None).is_ok()) {
+            Some(false) => {}
+            Some(true) => later_fans.push(v),
+            None => return false,
+        }
+    }
+    later_triangles
+        .into_iter()
+        .all(|c| filter::triangle_in_pieces(start, end, c, &span.deltas, span.s))
+        && later_fans
+            .into_iter()
+            .all(|v| filter::fan_in_pieces(start, end, v, &span.deltas, span.s))
+}
+
 /// [`certify_segment`] for the part `s0 ≤ s ≤ s1` of the motion only: the
 /// triangulation must be valid at the exact shape `p(s0)` (a rational
 /// shape, decided exactly) and stay valid up to `p(s1)`.

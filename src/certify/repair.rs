@@ -91,10 +91,7 @@ pub fn certified_triangulation(
     triangles.sort_unstable();
     // The DP's answer is certified by construction; checked once more by
     // the certificate itself.
-    certify_segment(start, end, &triangles, player)
-        .ok()?
-        .is_certified()
-        .then_some(triangles)
+    super::segment_holds(start, end, &triangles, player).then_some(triangles)
 }
 
 /// The flips of [`flip_to_certify`].

@@ -310,13 +310,12 @@ impl DrawingTween {
                     Motion::Tween(tween) => tween.keyframes(),
                     Motion::Scale { triangles, .. } => {
                         let ends = [part.frame(0.0)?, part.frame(1.0)?];
-                        let certified = crate::certify::certify_segment(
+                        let certified = crate::certify::segment_holds(
                             &ends[0].points,
                             &ends[1].points,
                             triangles,
                             crate::certify::Player::Exact,
-                        )
-                        .is_ok_and(|r| r.is_certified());
+                        );
                         if !certified {
                             return Err(DrawingTweenError::Scaled {
                                 shape: part.label.clone(),

@@ -1288,13 +1288,7 @@ fn merge_keys(leg: &mut Leg, tol: f64) {
             near(i, j, 0.5 * (samples[j - 1] + samples[j]), on, *on_area)
         };
         close
-            && crate::certify::certify_segment(
-                &keys[i],
-                &keys[j],
-                &tris,
-                crate::certify::Player::F64,
-            )
-            .is_ok_and(|r| r.is_certified())
+            && crate::certify::segment_holds(&keys[i], &keys[j], &tris, crate::certify::Player::F64)
     };
     let mut kept = vec![0usize];
     let mut i = 0;

@@ -277,8 +277,7 @@ impl Leg {
             let smooth = bend.is_some_and(|d| d <= 0.5 * tol)
                 && chord_area_loss(a.1, b.1).abs() <= 0.5 * KEY_AREA_TOLERANCE * total_area;
             if smooth
-                && crate::certify::certify_segment(a.1, b.1, &tris, crate::certify::Player::Exact)
-                    .is_ok_and(|r| r.is_certified())
+                && crate::certify::segment_holds(a.1, b.1, &tris, crate::certify::Player::Exact)
             {
                 out.push(b, true);
                 continue;
@@ -322,10 +321,8 @@ impl Leg {
         if out.aborted {
             return;
         }
-        let certified = || {
-            crate::certify::certify_segment(a.1, b.1, tris, crate::certify::Player::Exact)
-                .is_ok_and(|r| r.is_certified())
-        };
+        let certified =
+            || crate::certify::segment_holds(a.1, b.1, tris, crate::certify::Player::Exact);
         // Following the path closely (position and area) and certifying
         // the segment draw on separate budgets, so that a stretch the path
         // is hard to follow on (a strip thinner than its moves) cannot use

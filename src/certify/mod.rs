@@ -395,42 +395,27 @@ pub(crate) fn segment_holds(
         return false;
     }
     let span = Span::new(start, end, 0.0, 1.0, player);
-    let margin_only = |exact: Result<(), ()>, without_margin: &dyn Fn() -> bool| match exact {
-        Ok(()) => Some(false),
-        Err(()) if span.shift.is_some() && without_margin() => Some(true),
-        Err(()) => None,
-    };
     let mut later_triangles = Vec::new();
     for &[a, b, c] in triangles {
         let corners = [a as usize, b as usize, c as usize];
-        if filter::triangle(start, end, corners, &span.deltas) {
-            continue;
-        }
-        let exact = span.triangle(corners, span.shift).map_err(|_| ());
-        match margin_only(exact, &|| span.triangle(corners, None).is_ok()) {
-            Some(false) => {}
-            Some(true) => later_triangles.push(corners),
-            None => return false,
+        match span.triangle_whole(corners) {
+            Holds::Filtered | Holds::Exactly => {}
+            Holds::No(_, true) => later_triangles.push(corners),
+            Holds::No(_, false) => return false,
         }
     }
     let mut later_fans = Vec::new();
     for v in 0..start.len() {
-        if filter::fan(start, end, v, &span.deltas) {
-            continue;
-        }
-        let exact = span.fan(v, span.shift).map_err(|_| ());
-        match margin_only(exact, &|| span.fan(v, None).is_ok()) {
-            Some(false) => {}
-            Some(true) => later_fans.push(v),
-            None => return false,
+        match span.fan_whole(v, &mut 0) {
+            None => {}
+            Some((_, true)) => later_fans.push(v),
+            Some((_, false)) => return false,
         }
     }
     later_triangles
         .into_iter()
-        .all(|c| filter::triangle_in_pieces(start, end, c, &span.deltas, span.s))
-        && later_fans
-            .into_iter()
-            .all(|v| filter::fan_in_pieces(start, end, v, &span.deltas, span.s))
+        .all(|c| span.triangle_in_pieces(c))
+        && later_fans.into_iter().all(|v| span.fan_in_pieces(v))
 }
 
 /// [`certify_segment`] for the part `s0 ≤ s ≤ s1` of the motion only: the
@@ -617,6 +602,14 @@ impl<'a> Span<'a> {
     /// margin is taken piece by piece (it overstates the margin where an
     /// edge shrinks inside the span).
     fn triangle_holds(&self, corners: [usize; 3]) -> Holds {
+        match self.triangle_whole(corners) {
+            Holds::No(_, true) if self.triangle_in_pieces(corners) => Holds::Exactly,
+            holds => holds,
+        }
+    }
+
+    /// [`Span::triangle_holds`] without the pieces.
+    fn triangle_whole(&self, corners: [usize; 3]) -> Holds {
         if self.whole() && filter::triangle(self.p, self.q, corners, &self.deltas) {
             return Holds::Filtered;
         }
@@ -624,12 +617,13 @@ impl<'a> Span<'a> {
             return Holds::Exactly;
         };
         let within_margin = self.shift.is_some() && self.triangle(corners, None).is_ok();
-        if within_margin
-            && filter::triangle_in_pieces(self.p, self.q, corners, &self.deltas, self.s)
-        {
-            return Holds::Exactly;
-        }
         Holds::No(bad, within_margin)
+    }
+
+    /// The pieces of [`Span::triangle_holds`]: every piece keeps the
+    /// triangle above the margin of its own ends.
+    fn triangle_in_pieces(&self, corners: [usize; 3]) -> bool {
+        filter::triangle_in_pieces(self.p, self.q, corners, &self.deltas, self.s)
     }
 
     /// Where the fan at `v` reaches a full turn on the span (with the
@@ -639,16 +633,26 @@ impl<'a> Span<'a> {
     /// does not depend on the triangulation (while its triangles stay
     /// counter-clockwise).
     fn fan_fails(&self, v: usize, exact: &mut usize) -> Option<(exact::Bad, bool)> {
+        match self.fan_whole(v, exact)? {
+            (_, true) if self.fan_in_pieces(v) => None,
+            failure => Some(failure),
+        }
+    }
+
+    /// [`Span::fan_fails`] without the pieces.
+    fn fan_whole(&self, v: usize, exact: &mut usize) -> Option<(exact::Bad, bool)> {
         if self.whole() && filter::fan(self.p, self.q, v, &self.deltas) {
             return None;
         }
         *exact += 1;
         let bad = self.fan(v, self.shift).err()?;
         let within_margin = self.shift.is_some() && self.fan(v, None).is_ok();
-        if within_margin && filter::fan_in_pieces(self.p, self.q, v, &self.deltas, self.s) {
-            return None;
-        }
         Some((*bad, within_margin))
+    }
+
+    /// The pieces of [`Span::fan_fails`].
+    fn fan_in_pieces(&self, v: usize) -> bool {
+        filter::fan_in_pieces(self.p, self.q, v, &self.deltas, self.s)
     }
 
     /// Integers for the vertices `vs` (with δ_v when `shift` is given).

@@ -10,10 +10,15 @@
 //!   keys between legs (`staged::target` shapes the intermediates).
 //! - `propagate`: one compatible morph under a fixed triangulation, laid
 //!   out along the dual tree (`compatible`, `layout`, `paths`, `rigid`).
-//! - `output`: what a morph gives ([`Frame`], [`Morph`], [`Fallback`]).
+//! - `output`: what a morph gives ([`Frame`], [`Morph`], [`Fallback`]) and
+//!   its JSON.
+//! - `measure`: the measures of motion a viewer sees (docs/design.md §7b,
+//!   §7c), which the planner holds its routes to; `crate::frames`
+//!   re-exports them.
 //!
 //! Flip sequences and the flip gate live in the crate's `flip` module.
 
+pub(crate) mod measure;
 pub(crate) mod output;
 mod plan;
 pub(crate) mod propagate;

@@ -1,6 +1,6 @@
 //! What a morph gives: its frames, the paths that made them and the
-//! recoveries on the way (docs/design.md §8). The motion measures of a
-//! frame sequence live above, in [`crate::frames`].
+//! recoveries on the way (docs/design.md §8). A morph's JSON, with the
+//! motion measures of its frames, is written in [`crate::frames`].
 
 use crate::geom::Point;
 use crate::morph::ThirdVertexPath;
@@ -81,7 +81,7 @@ pub struct Morph {
 }
 
 /// A morph's motion measures in JSON: each `None` (`null`) where it is not
-/// defined. Computed in [`crate::frames`], beside the measures.
+/// defined.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub(crate) struct Motion {
     pub(crate) detour: Option<f64>,

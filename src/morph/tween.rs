@@ -155,18 +155,18 @@ impl Tween {
             let t: Vec<f64> = (0..k).map(|i| i as f64 / (k - 1) as f64).collect();
             self.morph(&t).ok().map(|m| m.frames)
         };
-        let step = |k: usize| frames(k).and_then(|f| crate::frames::view_measures(&f));
+        let step = |k: usize| frames(k).and_then(|f| crate::morph::measure::view_measures(&f));
         let (coarse, fine) = (step(40)?.max_step, step(2560)?.max_step);
         let f = frames(320)?;
-        let v = crate::frames::view_measures(&f)?;
+        let v = crate::morph::measure::view_measures(&f)?;
         // A step that keeps its size as frames are added is a jump.
         let shrinks = |a: f64, b: f64| b <= a / 4.0 || b < 0.01;
         Some(Motion {
             jumps: !(shrinks(coarse, v.max_step) && shrinks(v.max_step, fine)),
             edge: v.edge_ratio,
             area: (v.area_low, v.area_high),
-            detour: crate::frames::detour(&f),
-            unwind: crate::frames::unwind(&f),
+            detour: crate::morph::measure::detour(&f),
+            unwind: crate::morph::measure::unwind(&f),
         })
     }
 
@@ -275,7 +275,7 @@ impl Tween {
                 triangles: k.triangles,
             })
             .collect();
-        crate::frames::detour(&frames)
+        crate::morph::measure::detour(&frames)
     }
 
     /// The least total absolute turning over the keys of the side used

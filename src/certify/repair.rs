@@ -42,8 +42,57 @@ pub(crate) fn flip_to_certify(
     if n < 4 || end.len() != n {
         return None;
     }
-    flips_to_certify(start, end, triangles, player)
-        .or_else(|| certified_triangulation(start, end, player))
+    let mut t = FlipTriangulation::new(n, triangles);
+    let mut removed: Vec<(u32, u32)> = Vec::new();
+    let mut flips = || -> Option<Vec<[u32; 3]>> {
+        for _ in 0..=MAX_REPAIR_FLIPS {
+            let report = certify_segment(start, end, t.triangles(), player).ok()?;
+            let Some(failure) = report.failure else {
+                return Some(t.triangles().to_vec());
+            };
+            let Defect::Triangle { corners, .. } = failure.defect else {
+                return None;
+            };
+            let (x, y) = best_flip(&t, start, end, corners, &removed)?;
+            let flip = t.flip(x, y)?;
+            removed.push(flip.from);
+        }
+        None
+    };
+    flips().or_else(|| certified_triangulation(start, end, player))
+}
+
+/// Of the diagonals of the triangle `corners` not in `removed`, the one
+/// whose flip gives two triangles counter-clockwise at both ends and
+/// least thin there.
+fn best_flip(
+    t: &FlipTriangulation,
+    start: &[Point],
+    end: &[Point],
+    [a, b, c]: [u32; 3],
+    removed: &[(u32, u32)],
+) -> Option<(u32, u32)> {
+    [(a, b), (b, c), (a, c)]
+        .into_iter()
+        .filter(|&(x, y)| !removed.contains(&(x.min(y), x.max(y))))
+        .filter_map(|(x, y)| {
+            let ([p, q, r, s], _) = t.quad(x, y)?;
+            // Flipped: (p, q, s) and (q, r, s), corners increasing.
+            let new = [[p, q, s], [q, r, s]].map(crate::flip::canonical);
+            let ccw = |pts: &[Point]| {
+                new.iter()
+                    .all(|&[i, j, k]| is_ccw(pts, i as usize, j as usize, k as usize))
+            };
+            (ccw(start) && ccw(end)).then(|| {
+                let fat = new
+                    .iter()
+                    .flat_map(|&tri| [fatness(start, tri), fatness(end, tri)])
+                    .fold(f64::INFINITY, f64::min);
+                (fat, x, y)
+            })
+        })
+        .max_by(|l, r| l.0.total_cmp(&r.0))
+        .map(|(_, x, y)| (x, y))
 }
 
 /// Most points for which [`certified_triangulation`] is tried: its DP
@@ -92,52 +141,6 @@ pub fn certified_triangulation(
     // The DP's answer is certified by construction; checked once more by
     // the certificate itself.
     super::segment_holds(start, end, &triangles, player).then_some(triangles)
-}
-
-/// The flips of [`flip_to_certify`].
-fn flips_to_certify(
-    start: &[Point],
-    end: &[Point],
-    triangles: &[[u32; 3]],
-    player: Player,
-) -> Option<Vec<[u32; 3]>> {
-    let n = start.len();
-    let mut t = FlipTriangulation::new(n, triangles);
-    let mut removed: Vec<(u32, u32)> = Vec::new();
-    for _ in 0..=MAX_REPAIR_FLIPS {
-        let report = certify_segment(start, end, t.triangles(), player).ok()?;
-        let Some(failure) = report.failure else {
-            return Some(t.triangles().to_vec());
-        };
-        let Defect::Triangle { corners, .. } = failure.defect else {
-            return None;
-        };
-        let [a, b, c] = corners;
-        let best = [(a, b), (b, c), (a, c)]
-            .into_iter()
-            .filter(|&(x, y)| !removed.contains(&(x.min(y), x.max(y))))
-            .filter_map(|(x, y)| {
-                let ([p, q, r, s], _) = t.quad(x, y)?;
-                // Flipped: (p, q, s) and (q, r, s), corners increasing.
-                let new = [[p, q, s], [q, r, s]].map(crate::flip::canonical);
-                let ccw = |pts: &[Point]| {
-                    new.iter()
-                        .all(|&[i, j, k]| is_ccw(pts, i as usize, j as usize, k as usize))
-                };
-                (ccw(start) && ccw(end)).then(|| {
-                    let fat = new
-                        .iter()
-                        .flat_map(|&tri| [fatness(start, tri), fatness(end, tri)])
-                        .fold(f64::INFINITY, f64::min);
-                    (fat, x, y)
-                })
-            })
-            .max_by(|l, r| l.0.total_cmp(&r.0));
-        let (_, x, y) = best?;
-        let flip = t.flip(x, y)?;
-        removed.push(flip.from);
-    }
-    None
 }
 
 /// How far from collinear the triangle `tri` is in `points`: its doubled

@@ -12,21 +12,11 @@ use crate::geom::Point;
 /// the original edges.
 pub fn insert_vertices(points: &[Point], extra: usize) -> (Vec<Point>, Vec<Option<usize>>) {
     let n = points.len();
-    // Number of pieces each original edge is cut into.
-    let mut pieces = vec![1usize; n];
     let lengths: Vec<f64> = (0..n)
         .map(|i| (points[(i + 1) % n] - points[i]).length())
         .collect();
-    let mut heap: std::collections::BinaryHeap<(OrdF64, std::cmp::Reverse<usize>)> = (0..n)
-        .map(|i| (OrdF64(lengths[i]), std::cmp::Reverse(i)))
-        .collect();
-    for _ in 0..extra {
-        let Some((_, std::cmp::Reverse(i))) = heap.pop() else {
-            break;
-        };
-        pieces[i] += 1;
-        heap.push((OrdF64(lengths[i] / pieces[i] as f64), std::cmp::Reverse(i)));
-    }
+    // Number of pieces each original edge is cut into.
+    let pieces = apportion(&lengths, extra);
     let mut out = Vec::with_capacity(n + extra);
     let mut origin = Vec::with_capacity(n + extra);
     for i in 0..n {
@@ -77,20 +67,45 @@ pub fn resample_arc_length(points: &[Point], m: usize) -> Vec<Point> {
     out
 }
 
+/// Splits `extra` whole units among items of weights `w`, on top of one
+/// each, always giving the next unit to the item with the largest weight
+/// per unit (D'Hondt; ties to the lower index): the largest weight per
+/// unit is as small as whole units allow. Edges cut into pieces by
+/// length ([`insert_vertices`]) and a sequence's frames shared among its
+/// segments by travel are both this.
+pub(crate) fn apportion(w: &[f64], extra: usize) -> Vec<usize> {
+    use std::cmp::Reverse;
+    let mut units = vec![1usize; w.len()];
+    let mut heap: std::collections::BinaryHeap<(Weight, Reverse<usize>)> = w
+        .iter()
+        .enumerate()
+        .map(|(i, &x)| (Weight(x), Reverse(i)))
+        .collect();
+    for _ in 0..extra {
+        let Some((_, Reverse(i))) = heap.pop() else {
+            break;
+        };
+        units[i] += 1;
+        heap.push((Weight(w[i] / units[i] as f64), Reverse(i)));
+    }
+    units
+}
+
+/// A weight ordered totally (`f64::total_cmp`), for the heap.
 #[derive(Clone, Copy)]
-struct OrdF64(f64);
-impl PartialEq for OrdF64 {
+struct Weight(f64);
+impl PartialEq for Weight {
     fn eq(&self, other: &Self) -> bool {
         self.cmp(other).is_eq()
     }
 }
-impl Eq for OrdF64 {}
-impl PartialOrd for OrdF64 {
+impl Eq for Weight {}
+impl PartialOrd for Weight {
     fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
         Some(self.cmp(other))
     }
 }
-impl Ord for OrdF64 {
+impl Ord for Weight {
     fn cmp(&self, other: &Self) -> std::cmp::Ordering {
         self.0.total_cmp(&other.0)
     }

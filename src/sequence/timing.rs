@@ -512,46 +512,16 @@ pub(super) fn schedule(
 /// the segment with the largest weight per step (D'Hondt): the largest
 /// speed is as small as whole steps allow.
 fn share(w: &[f64], budget: usize) -> Vec<usize> {
-    let mut s = vec![1usize; w.len()];
-    let mut left = budget - w.len();
+    let left = budget - w.len();
     if w.iter().all(|&x| x <= 0.0 || !x.is_finite()) {
         // Nothing moves: spread evenly.
-        let mut i = 0;
-        while left > 0 {
+        let mut s = vec![1usize; w.len()];
+        for i in 0..left {
             s[i % w.len()] += 1;
-            left -= 1;
-            i += 1;
         }
         return s;
     }
-    let mut heap: std::collections::BinaryHeap<(Ordered, std::cmp::Reverse<usize>)> = w
-        .iter()
-        .enumerate()
-        .map(|(i, &x)| (Ordered(x), std::cmp::Reverse(i)))
-        .collect();
-    while left > 0 {
-        let Some((_, std::cmp::Reverse(i))) = heap.pop() else {
-            break;
-        };
-        s[i] += 1;
-        left -= 1;
-        heap.push((Ordered(w[i] / s[i] as f64), std::cmp::Reverse(i)));
-    }
-    s
-}
-
-#[derive(PartialEq)]
-struct Ordered(f64);
-impl Eq for Ordered {}
-impl PartialOrd for Ordered {
-    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Ordered {
-    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
-        self.0.total_cmp(&other.0)
-    }
+    crate::correspond::apportion(w, left)
 }
 
 #[cfg(test)]

@@ -6,11 +6,15 @@
 //! ```text
 //! cargo run --release --example motion_view -- [--set motion|reference|stress]
 //!     [--seed S] [--start I] [--pairs N] [--path P] [--correspondence C] [--rows] [--failures]
+//!     [--classify]
 //! ```
 //!
 //! `--set stress` draws pairs `I..I+N` of the stress generators with seed
 //! `S` and morphs them at the default options. `--rows` prints one row per
-//! pair; `--failures` only the pairs that miss a gate.
+//! pair; `--failures` only the pairs that miss a gate. `--classify` gives
+//! every key segment left uncertified to `certify::certify_motion` (the
+//! search of `immerse certify`: any triangulations, piece by piece, up to
+//! 64) and counts those it finds invalid, certifies and leaves undecided.
 
 use immerse::Curve;
 use immerse::frames::{Frame, detour, unwind, view_measures};
@@ -40,6 +44,10 @@ struct Row {
     /// rejects when re-run on the keys as `Tween::keyframes` gives them.
     segments: usize,
     uncertified: usize,
+    /// With `--classify`: the uncertified segments that
+    /// `certify::certify_motion` (any triangulations, piece by piece)
+    /// finds invalid, certifies, and leaves undecided.
+    classified: [usize; 3],
     error: Option<String>,
 }
 
@@ -90,6 +98,7 @@ fn measure(
     a: &[immerse::Point],
     b: &[immerse::Point],
     options: &CurveMorphOptions,
+    classify: bool,
 ) -> Row {
     let start = Instant::now();
     let mut row = Row {
@@ -106,6 +115,7 @@ fn measure(
         path: String::new(),
         segments: 0,
         uncertified: 0,
+        classified: [0; 3],
         error: None,
     };
     let tween = match Tween::new(a, b, options) {
@@ -139,6 +149,21 @@ fn measure(
         .is_ok_and(|r| r.is_certified());
         if !certified {
             row.uncertified += 1;
+            if classify {
+                use immerse::certify::{MotionOptions, Verdict, certify_motion};
+                let report = certify_motion(
+                    &w[0].points,
+                    &w[1].points,
+                    &[&w[0].triangles, &w[1].triangles],
+                    immerse::certify::Player::Exact,
+                    MotionOptions { max_pieces: 64 },
+                );
+                row.classified[match report.verdict {
+                    Verdict::Invalid { .. } => 0,
+                    Verdict::Certified => 1,
+                    Verdict::Undecided { .. } => 2,
+                }] += 1;
+            }
         }
     }
     let frames = |k: usize| -> Result<Vec<Frame>, String> {
@@ -199,6 +224,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let set = flag(&args, "--set").unwrap_or_else(|| "motion".into());
+    let classify = args.iter().any(|a| a == "--classify");
     let mut options = CurveMorphOptions::DEFAULT;
     if let Some(p) = flag(&args, "--path") {
         let path: ThirdVertexPath = p.parse().expect("a path name");
@@ -231,7 +257,13 @@ fn main() {
                 .map(|(a, b)| {
                     let ca = Curve::from_path(dir.join(&a)).expect("a readable curve");
                     let cb = Curve::from_path(dir.join(&b)).expect("a readable curve");
-                    measure(format!("{a} → {b}"), &ca.points, &cb.points, &options)
+                    measure(
+                        format!("{a} → {b}"),
+                        &ca.points,
+                        &cb.points,
+                        &options,
+                        classify,
+                    )
                 })
                 .collect()
         }
@@ -250,6 +282,7 @@ fn main() {
                         &p.source,
                         &p.target,
                         &options,
+                        classify,
                     );
                     let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
                     if k % 50 == 0 {
@@ -323,4 +356,13 @@ fn main() {
         ok.iter().map(|r| r.ms).sum::<f64>(),
         start.elapsed().as_secs_f64()
     );
+    if classify {
+        let sum = |k: usize| ok.iter().map(|r| r.classified[k]).sum::<usize>();
+        println!(
+            "uncertified segments through certify_motion (up to 64 pieces): {} invalid, {} certified piece by piece, {} undecided",
+            sum(0),
+            sum(1),
+            sum(2)
+        );
+    }
 }

@@ -593,6 +593,16 @@ impl Compatible {
         })
     }
 
+    /// Frees the rigid path's guide where it was built and usable: it is
+    /// made again, bit for bit the same, if the path is evaluated again. A
+    /// guide that could not be used is kept (it holds nothing), so that
+    /// [`Compatible::has_rigid_guide`] still answers for it.
+    pub(crate) fn release_rigid_guide(&mut self) {
+        if matches!(self.rigid.get(), Some(Some(_))) {
+            self.rigid = std::sync::OnceLock::new();
+        }
+    }
+
     /// False where the `rigid` path, once evaluated, was guided by the
     /// straight guide: the as-rigid-as-possible one could not be factored
     /// or solved accurately ([`Compatible::rigid_guide`]).
@@ -1272,6 +1282,21 @@ pub(crate) mod tests {
             .collect()
     }
 
+    /// A random compatible pair: `min + ⌊u·span⌋` vertices (u uniform in
+    /// [0, 1)), a random triangulation, and two random immersed disks
+    /// under it (curl 3).
+    pub(crate) fn random_pair(
+        rng: &mut Rng,
+        min: usize,
+        span: f64,
+    ) -> (usize, Vec<[u32; 3]>, Vec<Point>, Vec<Point>) {
+        let n = min + (rng.next() * span) as usize;
+        let tris = random_triangulation(n as u32, rng);
+        let a = random_immersed_disk(n, &tris, 3.0, rng);
+        let b = random_immersed_disk(n, &tris, 3.0, rng);
+        (n, tris, a, b)
+    }
+
     /// A random immersed disk: random angles blended toward the disk's
     /// just enough to keep every fan sum below 2π − margin.
     pub(crate) fn random_immersed_disk(
@@ -1475,13 +1500,43 @@ pub(crate) mod tests {
     }
 
     #[test]
+    fn a_released_rigid_guide_is_built_again_bit_for_bit() {
+        let mut rng = Rng(0x9e1ea5e);
+        let mut used = 0;
+        for _ in 0..20 {
+            let (_, tris, a, b) = random_pair(&mut rng, 6, 30.0);
+            let mut plan =
+                Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
+            let ts = [0.0, 0.03125, 0.3, 0.5, 0.77, 1.0];
+            let at = |plan: &Compatible| -> Vec<Vec<Point>> {
+                ts.iter()
+                    .map(|&t| plan.positions(t, ThirdVertexPath::Rigid))
+                    .collect()
+            };
+            let first = at(&plan);
+            let usable = plan.has_rigid_guide();
+            used += usize::from(usable);
+            plan.release_rigid_guide();
+            // Released (where usable): nothing is held until asked again.
+            assert_eq!(plan.rigid.get().is_none(), usable);
+            let again = at(&plan);
+            let bits = |f: &[Vec<Point>]| -> Vec<u64> {
+                f.iter()
+                    .flatten()
+                    .flat_map(|p| [p.x.to_bits(), p.y.to_bits()])
+                    .collect()
+            };
+            assert_eq!(bits(&first), bits(&again));
+            assert_eq!(plan.has_rigid_guide(), usable);
+        }
+        assert!(used >= 10, "{used} of 20 pairs had a usable rigid guide");
+    }
+
+    #[test]
     fn consecutive_frames_move_continuously() {
         let mut rng = Rng(0x1234567);
         for _ in 0..20 {
-            let n = 6 + (rng.next() * 30.0) as usize;
-            let tris = random_triangulation(n as u32, &mut rng);
-            let a = random_immersed_disk(n, &tris, 3.0, &mut rng);
-            let b = random_immersed_disk(n, &tris, 3.0, &mut rng);
+            let (_, tris, a, b) = random_pair(&mut rng, 6, 30.0);
             let plan =
                 Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
             let diag = bbox_diag(&a).max(bbox_diag(&b));

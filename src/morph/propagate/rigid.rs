@@ -518,9 +518,7 @@ fn solve(steps: &[Step], pinned: usize, mut b: Vec<Point>) -> Vec<Point> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::morph::propagate::compatible::tests::{
-        Rng, random_immersed_disk, random_triangulation,
-    };
+    use crate::morph::propagate::compatible::tests::{Rng, random_pair};
     use crate::tree::DualTree;
 
     fn edges(p: &[Point], tris: &[[u32; 3]]) -> Vec<[Point; 2]> {
@@ -543,10 +541,7 @@ mod tests {
     fn ends_are_reproduced_and_similarities_interpolate_rigidly() {
         let mut rng = Rng(0x5eed_41a9);
         for case in 0..40 {
-            let n = 4 + (rng.next() * 60.0) as usize;
-            let tris = random_triangulation(n as u32, &mut rng);
-            let a = random_immersed_disk(n, &tris, 3.0, &mut rng);
-            let b = random_immersed_disk(n, &tris, 3.0, &mut rng);
+            let (n, tris, a, b) = random_pair(&mut rng, 4, 60.0);
             let tree = DualTree::new(n, &tris).unwrap();
             let rooted = tree.rooted(0);
             let g = RigidGuide::new(&a, &tris, &edges(&b, &tris), &rooted, [mean(&a), mean(&b)])

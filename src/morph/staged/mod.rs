@@ -853,6 +853,8 @@ impl Staged {
             x = end_shape;
             st.flips += applied;
             if leg.s_end() > 0.0 {
+                let mut leg = leg;
+                leg.plan.release_rigid_guide();
                 st.legs.push(leg);
             }
             if applied > 0 {

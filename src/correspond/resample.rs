@@ -68,18 +68,26 @@ pub fn resample_arc_length(points: &[Point], m: usize) -> Vec<Point> {
 }
 
 /// Splits `extra` whole units among items of weights `w`, on top of one
-/// each, always giving the next unit to the item with the largest weight
-/// per unit (D'Hondt; ties to the lower index): the largest weight per
-/// unit is as small as whole units allow. Edges cut into pieces by
+/// each ([`apportion_among`] over every item). Edges cut into pieces by
 /// length ([`insert_vertices`]) and a sequence's frames shared among its
 /// segments by travel are both this.
 pub(crate) fn apportion(w: &[f64], extra: usize) -> Vec<usize> {
-    use std::cmp::Reverse;
     let mut units = vec![1usize; w.len()];
-    let mut heap: std::collections::BinaryHeap<(Weight, Reverse<usize>)> = w
+    let all: Vec<usize> = (0..w.len()).collect();
+    apportion_among(w, &mut units, &all, extra);
+    units
+}
+
+/// Adds `extra` whole units to `units` at the items `among` (each with at
+/// least one unit already), always giving the next unit to the item with
+/// the largest weight per unit `w[i] / units[i]` (D'Hondt; ties to the
+/// lower index): the largest weight per unit is as small as whole units
+/// allow.
+pub(crate) fn apportion_among(w: &[f64], units: &mut [usize], among: &[usize], extra: usize) {
+    use std::cmp::Reverse;
+    let mut heap: std::collections::BinaryHeap<(Weight, Reverse<usize>)> = among
         .iter()
-        .enumerate()
-        .map(|(i, &x)| (Weight(x), Reverse(i)))
+        .map(|&i| (Weight(w[i] / units[i] as f64), Reverse(i)))
         .collect();
     for _ in 0..extra {
         let Some((_, Reverse(i))) = heap.pop() else {
@@ -88,7 +96,6 @@ pub(crate) fn apportion(w: &[f64], extra: usize) -> Vec<usize> {
         units[i] += 1;
         heap.push((Weight(w[i] / units[i] as f64), Reverse(i)));
     }
-    units
 }
 
 /// A weight ordered totally (`f64::total_cmp`), for the heap.

@@ -18,8 +18,6 @@
 
 use super::{HintAt, HintVertex, Key, SequenceError};
 use crate::geom::Point;
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 
 /// The keys with equal counts. Within a group of hinted segments the
 /// vertex numbers already agree at the hints; between groups, the
@@ -205,37 +203,18 @@ fn pin(points: &[Point], places: &[Place]) -> (Pinned, Vec<usize>) {
     (out, vertex)
 }
 
-/// A total order on lengths for the heap (ties to the smaller edge).
-#[derive(PartialEq)]
-struct Piece(f64, Reverse<usize>);
-impl Eq for Piece {}
-impl PartialOrd for Piece {
-    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Piece {
-    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
-        self.0.total_cmp(&other.0).then(self.1.cmp(&other.1))
-    }
-}
-
 /// Inserts `k` vertices on `edges`, each time splitting the edge whose
-/// pieces are currently longest (as `correspond::insert_vertices` does).
+/// pieces are currently longest (as `correspond::insert_vertices` does:
+/// the same apportionment, [`crate::correspond::apportion_among`], of
+/// pieces, one more than the vertices inserted).
 fn distribute(len: &[f64], counts: &mut [usize], edges: &[usize], k: usize) {
     if k == 0 {
         return;
     }
-    let mut heap: BinaryHeap<Piece> = edges
-        .iter()
-        .map(|&e| Piece(len[e] / (counts[e] + 1) as f64, Reverse(e)))
-        .collect();
-    for _ in 0..k {
-        let Some(Piece(_, Reverse(e))) = heap.pop() else {
-            return;
-        };
-        counts[e] += 1;
-        heap.push(Piece(len[e] / (counts[e] + 1) as f64, Reverse(e)));
+    let mut pieces: Vec<usize> = counts.iter().map(|c| c + 1).collect();
+    crate::correspond::apportion_among(len, &mut pieces, edges, k);
+    for &e in edges {
+        counts[e] = pieces[e] - 1;
     }
 }
 

@@ -829,7 +829,7 @@ impl Staged {
             let walked = walk(
                 inp, &x, &end, &tree, &mut cur, &mut order, floor, at_disk, &mut st, peak,
             )?;
-            let (leg, applied, end_shape) = match walked {
+            let (mut leg, applied, end_shape) = match walked {
                 Walk::Done(leg, applied, end_shape) => (*leg, applied, end_shape),
                 Walk::GaveUp => return Ok(None),
                 Walk::Failed(why) if !at_disk => {
@@ -853,7 +853,6 @@ impl Staged {
             x = end_shape;
             st.flips += applied;
             if leg.s_end() > 0.0 {
-                let mut leg = leg;
                 leg.plan.release_rigid_guide();
                 st.legs.push(leg);
             }

@@ -180,7 +180,11 @@ pub fn morph_with(
         match build(p) {
             // Every path before the k-th failed and left a fallback.
             Ok(frames) => {
-                fallbacks.extend(staged::guide_fallback(plan, p, "the morph"));
+                fallbacks.extend(staged::guide_fallback(
+                    plan.has_rigid_guide(),
+                    p,
+                    "the morph",
+                ));
                 return Ok(Morph::new(vec![p], fallbacks, frames));
             }
             Err((t, defect)) => {

@@ -465,6 +465,9 @@ impl Tween {
                     let bridges = leg.refine_keys(tol, strict)?;
                     merge_keys(leg, tol);
                     leg.repair_keys();
+                    // The keys are placed: the plan is built again only
+                    // where a frame on an uncertified segment needs it.
+                    leg.plan.release();
                     Some(bridges)
                 })
                 .collect::<Vec<_>>()

@@ -79,6 +79,83 @@ pub struct Compatible {
     /// The rigid path's guide, made on first use (`None` where it cannot
     /// be factored, and the straight guide toward the target stands in).
     rigid: std::sync::OnceLock<Option<(RigidGuide, [Vec<Point>; 2])>>,
+    /// How the root triangle was chosen (to build the plan again,
+    /// [`Compatible::seed`]).
+    root_choice: RootChoice,
+}
+
+/// What a plan is built from, without what it derives: about a third of
+/// its memory. [`PlanSeed::build`] builds the same plan again, bit for bit
+/// (every step is deterministic), so the staged route need not keep a
+/// plan for each of its many legs while it walks them.
+#[derive(Clone, Debug)]
+pub(crate) struct PlanSeed {
+    src: Vec<Point>,
+    dst: Vec<Point>,
+    triangles: Vec<[u32; 3]>,
+    root_choice: RootChoice,
+    fan_margin: f64,
+    /// The straight guide's end where it is not the target.
+    guide_end: Option<Vec<Point>>,
+    area_range: (f64, f64),
+    /// Whether the rigid guide was found unusable (the plan reports it,
+    /// [`Compatible::has_rigid_guide`]).
+    rigid_failed: bool,
+}
+
+/// Whether `a` and `b` are the same points bit for bit.
+fn same_bits(a: &[Point], b: &[Point]) -> bool {
+    a.len() == b.len()
+        && a.iter()
+            .zip(b)
+            .all(|(p, q)| p.x.to_bits() == q.x.to_bits() && p.y.to_bits() == q.y.to_bits())
+}
+
+impl PlanSeed {
+    /// The plan's triangulation ([`Compatible::triangles`]).
+    pub(crate) fn triangles(&self) -> &[[u32; 3]] {
+        &self.triangles
+    }
+
+    /// The plan's target ([`Compatible::target`]).
+    pub(crate) fn target(&self) -> &[Point] {
+        &self.dst
+    }
+
+    /// The plan's fan margin ([`Compatible::fan_margin`]).
+    pub(crate) fn fan_margin(&self) -> f64 {
+        self.fan_margin
+    }
+
+    /// [`Compatible::has_rigid_guide`] of the plan when it was released.
+    pub(crate) fn has_rigid_guide(&self) -> bool {
+        !self.rigid_failed
+    }
+
+    /// The plan this seed was taken from, built again.
+    ///
+    /// # Errors
+    ///
+    /// None for a seed taken from a plan ([`Compatible::seed`]): the plan
+    /// was built from the same input by the same steps.
+    pub(crate) fn build(&self) -> Result<Compatible, CompatibleError> {
+        let tree = DualTree::new(self.src.len(), &self.triangles)?;
+        let mut plan = Compatible::on_tree(
+            &self.src,
+            &self.dst,
+            &tree,
+            self.root_choice,
+            self.fan_margin,
+        )?;
+        if let Some(end) = &self.guide_end {
+            plan = plan.with_guide(end);
+        }
+        plan.area_range = self.area_range;
+        if self.rigid_failed {
+            let _ = plan.rigid.set(None);
+        }
+        Ok(plan)
+    }
 }
 
 /// The two ends of the polar guide: per vertex, its angle about the
@@ -408,6 +485,7 @@ impl Compatible {
             area_range: straight_area_range(a_s, a_d),
             polar: std::sync::OnceLock::new(),
             rigid: std::sync::OnceLock::new(),
+            root_choice: root,
         })
     }
 
@@ -593,13 +671,18 @@ impl Compatible {
         })
     }
 
-    /// Frees the rigid path's guide where it was built and usable: it is
-    /// made again, bit for bit the same, if the path is evaluated again. A
-    /// guide that could not be used is kept (it holds nothing), so that
-    /// [`Compatible::has_rigid_guide`] still answers for it.
-    pub(crate) fn release_rigid_guide(&mut self) {
-        if matches!(self.rigid.get(), Some(Some(_))) {
-            self.rigid = std::sync::OnceLock::new();
+    /// What this plan is built from ([`PlanSeed::build`] builds it
+    /// again).
+    pub(crate) fn seed(&self) -> PlanSeed {
+        PlanSeed {
+            src: self.src.clone(),
+            dst: self.dst.clone(),
+            triangles: self.triangles.clone(),
+            root_choice: self.root_choice,
+            fan_margin: self.fan_margin,
+            guide_end: (!same_bits(&self.guide_end, &self.dst)).then(|| self.guide_end.clone()),
+            area_range: self.area_range,
+            rigid_failed: !self.has_rigid_guide(),
         }
     }
 
@@ -1500,36 +1583,69 @@ pub(crate) mod tests {
     }
 
     #[test]
-    fn a_released_rigid_guide_is_built_again_bit_for_bit() {
+    fn a_plan_built_again_from_its_seed_is_the_same_bit_for_bit() {
         let mut rng = Rng(0x9e1ea5e);
         let mut used = 0;
-        for _ in 0..20 {
+        for round in 0..20 {
             let (_, tris, a, b) = random_pair(&mut rng, 6, 30.0);
             let mut plan =
                 Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
+            // What the staged route changes after building: a guide's end
+            // (every other pair) and an area range that binds.
+            if round % 2 == 0 {
+                let end: Vec<Point> = a.iter().zip(&b).map(|(p, q)| p.lerp(*q, 0.7)).collect();
+                plan = plan.with_guide(&end);
+            }
+            let (a0, a1) = (
+                area_and_centroid(&a, &tris).0,
+                area_and_centroid(&b, &tris).0,
+            );
+            plan = plan.with_area_range(1.5 * a0, 1.5 * a1);
+            let paths = [
+                ThirdVertexPath::Rigid,
+                ThirdVertexPath::Straight,
+                ThirdVertexPath::Hybrid,
+                ThirdVertexPath::Polar,
+            ];
             let ts = [0.0, 0.03125, 0.3, 0.5, 0.77, 1.0];
-            let at = |plan: &Compatible| -> Vec<Vec<Point>> {
-                ts.iter()
-                    .map(|&t| plan.positions(t, ThirdVertexPath::Rigid))
-                    .collect()
-            };
-            let first = at(&plan);
-            let usable = plan.has_rigid_guide();
-            used += usize::from(usable);
-            plan.release_rigid_guide();
-            // Released (where usable): nothing is held until asked again.
-            assert_eq!(plan.rigid.get().is_none(), usable);
-            let again = at(&plan);
-            let bits = |f: &[Vec<Point>]| -> Vec<u64> {
-                f.iter()
-                    .flatten()
+            let bits = |plan: &Compatible| -> Vec<u64> {
+                paths
+                    .iter()
+                    .flat_map(|&path| ts.iter().map(move |&t| (path, t)))
+                    .flat_map(|(path, t)| plan.positions(t, path))
                     .flat_map(|p| [p.x.to_bits(), p.y.to_bits()])
                     .collect()
             };
-            assert_eq!(bits(&first), bits(&again));
-            assert_eq!(plan.has_rigid_guide(), usable);
+            let first = bits(&plan);
+            let usable = plan.has_rigid_guide();
+            used += usize::from(usable);
+            let seed = plan.seed();
+            drop(plan);
+            let again = seed.build().unwrap();
+            // The rigid guide's verdict is carried before it is used again.
+            assert_eq!(again.has_rigid_guide(), usable);
+            assert_eq!(seed.has_rigid_guide(), usable);
+            assert_eq!(bits(&again), first, "round {round}");
         }
         assert!(used >= 10, "{used} of 20 pairs had a usable rigid guide");
+        // A guide found unusable stays so: the plan built again is guided
+        // by the straight guide, as the first was, without solving again.
+        let (_, tris, a, b) = random_pair(&mut rng, 6, 30.0);
+        let plan = Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
+        plan.rigid.set(None).unwrap();
+        let again = plan.seed().build().unwrap();
+        assert!(!again.has_rigid_guide());
+        for t in [0.25, 0.5] {
+            let (p, q) = (
+                plan.positions(t, ThirdVertexPath::Rigid),
+                again.positions(t, ThirdVertexPath::Rigid),
+            );
+            assert!(
+                p.iter()
+                    .zip(&q)
+                    .all(|(p, q)| p.to_array().map(f64::to_bits) == q.to_array().map(f64::to_bits))
+            );
+        }
     }
 
     #[test]

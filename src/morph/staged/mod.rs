@@ -36,6 +36,7 @@ use crate::geom::Point;
 use crate::geom::polygon::{min_triangle_angle as min_angle, signed_area};
 use crate::immersion::{check, check_triangles};
 use crate::morph::Fallback;
+use crate::morph::propagate::compatible::PlanSeed;
 use crate::morph::staged::target::{Candidates, TargetAngles, target_shape};
 use crate::morph::{Compatible, CompatibleError, MorphError, ThirdVertexPath, area_and_centroid};
 use crate::tree::{DualTree, RootChoice, disk_positions};
@@ -49,7 +50,7 @@ pub(crate) const LEG_STEP: f64 = 1.0 / 32.0;
 /// each (the frame timing).
 #[derive(Clone, Debug)]
 pub(crate) struct Leg {
-    pub(crate) plan: Compatible,
+    pub(crate) plan: LegPlan,
     pub(crate) path: ThirdVertexPath,
     /// Local parameters of the checked samples, from 0 to `s_end`.
     pub(crate) samples: Vec<f64>,
@@ -76,12 +77,94 @@ pub(crate) struct Leg {
     pub(crate) end_turning: f64,
 }
 
+/// A leg's plan: kept while the leg is walked, then only what it is built
+/// from ([`LegPlan::release`]); built again, bit for bit the same, where
+/// it is used (its keys are placed, a frame is recovered on it). A flip
+/// route of some thousands of flips walks hundreds of legs, and a plan
+/// takes about three times the memory of its seed.
+#[derive(Clone, Debug)]
+pub(crate) struct LegPlan {
+    plan: std::sync::OnceLock<Compatible>,
+    seed: Option<PlanSeed>,
+}
+
+impl LegPlan {
+    fn new(plan: Compatible) -> LegPlan {
+        LegPlan {
+            plan: std::sync::OnceLock::from(plan),
+            seed: None,
+        }
+    }
+
+    /// Drops the plan, keeping its seed.
+    pub(crate) fn release(&mut self) {
+        if let Some(plan) = self.plan.take() {
+            self.seed = Some(plan.seed());
+        }
+    }
+
+    /// The seed of a released plan that has not been built again: what
+    /// the plan's inputs are read from without building it.
+    fn seed_only(&self) -> Option<&PlanSeed> {
+        match self.plan.get() {
+            Some(_) => None,
+            None => self.seed.as_ref(),
+        }
+    }
+
+    /// [`Compatible::triangles`], without building a released plan.
+    pub(crate) fn triangles(&self) -> &[[u32; 3]] {
+        match self.seed_only() {
+            Some(seed) => seed.triangles(),
+            None => Compatible::triangles(self),
+        }
+    }
+
+    /// [`Compatible::target`], without building a released plan.
+    pub(crate) fn target(&self) -> &[Point] {
+        match self.seed_only() {
+            Some(seed) => seed.target(),
+            None => Compatible::target(self),
+        }
+    }
+
+    /// [`Compatible::fan_margin`], without building a released plan.
+    pub(crate) fn fan_margin(&self) -> f64 {
+        match self.seed_only() {
+            Some(seed) => seed.fan_margin(),
+            None => Compatible::fan_margin(self),
+        }
+    }
+
+    /// [`Compatible::has_rigid_guide`], without building a released plan.
+    pub(crate) fn has_rigid_guide(&self) -> bool {
+        match self.seed_only() {
+            Some(seed) => seed.has_rigid_guide(),
+            None => Compatible::has_rigid_guide(self),
+        }
+    }
+}
+
+impl std::ops::Deref for LegPlan {
+    type Target = Compatible;
+
+    fn deref(&self) -> &Compatible {
+        self.plan.get_or_init(|| {
+            self.seed
+                .as_ref()
+                .expect("a released plan keeps its seed")
+                .build()
+                .expect("a plan's seed builds it again")
+        })
+    }
+}
+
 impl Leg {
     /// A leg with only its start sample.
     fn start(plan: Compatible, path: ThirdVertexPath) -> Leg {
         let first = plan.source().to_vec();
         Leg {
-            plan,
+            plan: LegPlan::new(plan),
             path,
             samples: vec![0.0],
             travel: vec![0.0],
@@ -853,7 +936,7 @@ impl Staged {
             x = end_shape;
             st.flips += applied;
             if leg.s_end() > 0.0 {
-                leg.plan.release_rigid_guide();
+                leg.plan.release();
                 st.legs.push(leg);
             }
             if applied > 0 {
@@ -897,7 +980,8 @@ impl Staged {
         };
         st.legs.push(last);
         for (k, leg) in st.legs.iter().enumerate() {
-            if let Some(f) = guide_fallback(&leg.plan, leg.path, &format!("leg {}", k + 1)) {
+            let rigid = leg.plan.has_rigid_guide();
+            if let Some(f) = guide_fallback(rigid, leg.path, &format!("leg {}", k + 1)) {
                 st.fallbacks.push(f);
             }
         }
@@ -1141,15 +1225,15 @@ fn last_leg(
     }
 }
 
-/// The report that `path` on `plan`, for `what` (e.g. "leg 2"), was
+/// The report that `path` on a plan, for `what` (e.g. "leg 2"), was
 /// guided by the straight guide instead of the as-rigid-as-possible one
-/// ([`Compatible::has_rigid_guide`]).
+/// (the plan's [`Compatible::has_rigid_guide`] is `has_rigid_guide`).
 pub(crate) fn guide_fallback(
-    plan: &Compatible,
+    has_rigid_guide: bool,
     path: ThirdVertexPath,
     what: &str,
 ) -> Option<Fallback> {
-    (path == ThirdVertexPath::Rigid && !plan.has_rigid_guide()).then(|| {
+    (path == ThirdVertexPath::Rigid && !has_rigid_guide).then(|| {
         Fallback::new(
             &format!("guided the rigid path of {what} by the straight guide"),
             "the as-rigid-as-possible system cannot be solved accurately in double precision \

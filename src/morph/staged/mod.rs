@@ -103,45 +103,37 @@ impl LegPlan {
         }
     }
 
-    /// The seed of a released plan that has not been built again: what
-    /// the plan's inputs are read from without building it.
-    fn seed_only(&self) -> Option<&PlanSeed> {
-        match self.plan.get() {
-            Some(_) => None,
-            None => self.seed.as_ref(),
+    /// Reads a plan's input from the seed of a released plan that has not
+    /// been built again (without building it), else from the plan.
+    fn read<'a, T>(
+        &'a self,
+        from_seed: impl FnOnce(&'a PlanSeed) -> T,
+        from_plan: impl FnOnce(&'a Compatible) -> T,
+    ) -> T {
+        match (self.plan.get(), &self.seed) {
+            (None, Some(seed)) => from_seed(seed),
+            _ => from_plan(self),
         }
     }
 
     /// [`Compatible::triangles`], without building a released plan.
     pub(crate) fn triangles(&self) -> &[[u32; 3]] {
-        match self.seed_only() {
-            Some(seed) => seed.triangles(),
-            None => Compatible::triangles(self),
-        }
+        self.read(PlanSeed::triangles, Compatible::triangles)
     }
 
     /// [`Compatible::target`], without building a released plan.
     pub(crate) fn target(&self) -> &[Point] {
-        match self.seed_only() {
-            Some(seed) => seed.target(),
-            None => Compatible::target(self),
-        }
+        self.read(PlanSeed::target, Compatible::target)
     }
 
     /// [`Compatible::fan_margin`], without building a released plan.
     pub(crate) fn fan_margin(&self) -> f64 {
-        match self.seed_only() {
-            Some(seed) => seed.fan_margin(),
-            None => Compatible::fan_margin(self),
-        }
+        self.read(PlanSeed::fan_margin, Compatible::fan_margin)
     }
 
     /// [`Compatible::has_rigid_guide`], without building a released plan.
     pub(crate) fn has_rigid_guide(&self) -> bool {
-        match self.seed_only() {
-            Some(seed) => seed.has_rigid_guide(),
-            None => Compatible::has_rigid_guide(self),
-        }
+        self.read(PlanSeed::has_rigid_guide, Compatible::has_rigid_guide)
     }
 }
 

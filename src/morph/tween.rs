@@ -144,7 +144,45 @@ impl Tween {
                 return Ok(other);
             }
         }
+        // No route qualifies: the first plan stays, and the segments it
+        // leaves uncertified are given keys off its path where those
+        // certify them (`off_path`).
+        let mut tween = tween;
+        tween.certify_off_path(options);
         Ok(tween)
+    }
+
+    /// Certifies, where it can, each segment left uncertified by keys off
+    /// the path ([`Leg::certify_off_path`]), saying so in the report, and
+    /// sets the frame timing again from the keys.
+    fn certify_off_path(&mut self, options: &CurveMorphOptions) {
+        use rayon::prelude::*;
+        let tol = key_tolerance(&self.staged, options);
+        let counts: Vec<usize> = self
+            .staged
+            .legs
+            .par_iter_mut()
+            .map(|leg| leg.certify_off_path(tol))
+            .collect();
+        for (j, (&count, leg)) in counts.iter().zip(&self.staged.legs).enumerate() {
+            if count > 0 {
+                self.report.fallbacks.push(Fallback::new(
+                    &format!(
+                        "certified {count} segment{} of leg {} by keys off its path",
+                        if count == 1 { "" } else { "s" },
+                        j + 1
+                    ),
+                    &format!(
+                        "neither keys taken from the {} path nor a flip of the triangulation certified {}, and no other route qualified: a feature a few units in the last place wide moves too far between two keys",
+                        leg.path,
+                        if count == 1 { "it" } else { "them" }
+                    ),
+                ));
+            }
+        }
+        if counts.iter().any(|&c| c > 0) {
+            (self.pace, self.offsets, self.total) = pace_tables(&self.staged.legs);
+        }
     }
 
     /// The measures of docs/design.md §7c of the motion, from its frames
@@ -447,15 +485,9 @@ impl Tween {
         })?;
         // The keys: the checked samples, split until every straight
         // segment between two keys keeps close to the path.
-        let diagonal = {
-            let d = crate::geom::polygon::bbox_diagonal;
-            let first = staged.legs.first().and_then(|l| l.keys.first());
-            let last = staged.legs.last().and_then(|l| l.keys.last());
-            first.map_or(0.0, |p| d(p)).max(last.map_or(0.0, |p| d(p)))
-        };
         let bridges: Vec<usize> = {
             use rayon::prelude::*;
-            let tol = options.key_tolerance * diagonal;
+            let tol = key_tolerance(&staged, options);
             staged
                 .legs
                 .par_iter_mut()
@@ -509,13 +541,7 @@ impl Tween {
                 ),
             ));
         }
-        let pace = pace_tables(&staged.legs);
-        let mut offsets = Vec::with_capacity(staged.legs.len());
-        let mut total = 0.0;
-        for p in &pace {
-            offsets.push(total);
-            total += p.last().copied().unwrap_or(0.0);
-        }
+        let (pace, offsets, total) = pace_tables(&staged.legs);
         let report = MorphReport {
             n,
             shift: sides.k,
@@ -1026,7 +1052,7 @@ fn key_at(c: &[f64], d: f64) -> (usize, f64) {
 
 /// The pace tables of `legs` (module docs): per leg, the cumulative pace
 /// at each key.
-fn pace_tables(legs: &[Leg]) -> Vec<Vec<f64>> {
+fn pace_tables(legs: &[Leg]) -> (Vec<Vec<f64>>, Vec<f64>, f64) {
     // Mean and largest vertex move of every segment between keys.
     let per_leg: Vec<Vec<(f64, f64)>> = legs
         .iter()
@@ -1042,7 +1068,7 @@ fn pace_tables(legs: &[Leg]) -> Vec<Vec<f64>> {
         .collect();
     let all: Vec<(f64, f64)> = per_leg.iter().flatten().copied().collect();
     let c = pace_ratio(&all);
-    per_leg
+    let tables: Vec<Vec<f64>> = per_leg
         .iter()
         .map(|segs| {
             let mut table = Vec::with_capacity(segs.len() + 1);
@@ -1054,7 +1080,24 @@ fn pace_tables(legs: &[Leg]) -> Vec<Vec<f64>> {
             }
             table
         })
-        .collect()
+        .collect();
+    let mut offsets = Vec::with_capacity(tables.len());
+    let mut total = 0.0;
+    for t in &tables {
+        offsets.push(total);
+        total += t.last().copied().unwrap_or(0.0);
+    }
+    (tables, offsets, total)
+}
+
+/// The key tolerance of `options` as a length: its fraction of the larger
+/// of the plan's two ends' bounding-box diagonals.
+fn key_tolerance(staged: &Staged, options: &CurveMorphOptions) -> f64 {
+    let d = crate::geom::polygon::bbox_diagonal;
+    let first = staged.legs.first().and_then(|l| l.keys.first());
+    let last = staged.legs.last().and_then(|l| l.keys.last());
+    let diagonal = first.map_or(0.0, |p| d(p)).max(last.map_or(0.0, |p| d(p)));
+    options.key_tolerance * diagonal
 }
 
 /// The pace of a segment whose vertices move `mean` on average and `max`

@@ -998,8 +998,27 @@ fn keys_left_uncertified_are_planned_again_by_a_route_that_certifies() {
         // The independent checker on every segment (every 16th in the
         // debug profile, where its rational arithmetic is slow; the
         // certificate above took them all).
-        let every = if cfg!(debug_assertions) { 16 } else { 1 };
-        for (k, w) in keys.windows(2).enumerate().step_by(every) {
+        // The independent checker on the segments whose keys hold the
+        // thinnest triangles (the features keys off the path carry; its
+        // rational arithmetic is too slow for all of them).
+        let thinness = |p: &[Point], tris: &[[u32; 3]]| {
+            tris.iter()
+                .map(|&[a, b, c]| {
+                    let (a, b, c) = (p[a as usize], p[b as usize], p[c as usize]);
+                    let longest = (b - a).length().max((c - b).length()).max((a - c).length());
+                    (b - a).perp_dot(c - a).abs() / (longest * longest)
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
+        let mut thinnest: Vec<(f64, usize)> = keys
+            .windows(2)
+            .enumerate()
+            .map(|(k, w)| (thinness(&w[0].points, &w[0].triangles), k))
+            .collect();
+        thinnest.sort_by(|x, y| x.0.total_cmp(&y.0));
+        let take = if cfg!(debug_assertions) { 8 } else { 48 };
+        for &(_, k) in thinnest.iter().take(take) {
+            let w = &keys[k..k + 2];
             assert_eq!(
                 checker(&w[0].points, &w[1].points, &w[0].triangles),
                 None,
@@ -1054,4 +1073,59 @@ fn segments_no_flip_certifies_are_given_a_triangulation_that_does() {
         }
     }
     assert!(own >= 1, "no segment has a triangulation of its own");
+}
+
+/// Stress pairs whose first plan leaves segments uncertified that no
+/// other route certifies: keys taken from the path cannot carry a feature
+/// a few units in the last place wide through its motion, and no flip or
+/// triangulation of the segment certifies it. Keys off the path do (a
+/// bridge split in its own parameter, or the feature enlarged first): the
+/// report says so, every segment is certified, and the independent checker
+/// agrees.
+#[test]
+fn segments_no_key_on_the_path_certifies_are_certified_by_keys_off_it() {
+    // Thin spiral → strip, glued-thin → thin spiral, spiral → thin curl.
+    const OFF_PATH_PAIRS: [u64; 3] = [77, 1126, 1463];
+    use immerse::morph::{CurveMorphOptions, Tween};
+    for index in OFF_PATH_PAIRS {
+        let pair = testkit::stress::pair(0xbee5, index);
+        let tw = Tween::new(&pair.source, &pair.target, &CurveMorphOptions::default()).unwrap();
+        let off = tw
+            .report()
+            .fallbacks
+            .iter()
+            .find(|f| f.what.contains("by keys off its path"));
+        assert!(off.is_some(), "pair {index}: {:?}", tw.report().fallbacks);
+        assert!(tw.is_certified(), "pair {index}");
+        let keys = tw.keyframes();
+        let report = crate::util::certify_keyframes(&keys, Player::Exact);
+        assert!(report.is_certified(), "pair {index}: {report:?}");
+        // The independent checker on the segments whose keys hold the
+        // thinnest triangles (the features keys off the path carry; its
+        // rational arithmetic is too slow for all of them).
+        let thinness = |p: &[Point], tris: &[[u32; 3]]| {
+            tris.iter()
+                .map(|&[a, b, c]| {
+                    let (a, b, c) = (p[a as usize], p[b as usize], p[c as usize]);
+                    let longest = (b - a).length().max((c - b).length()).max((a - c).length());
+                    (b - a).perp_dot(c - a).abs() / (longest * longest)
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
+        let mut thinnest: Vec<(f64, usize)> = keys
+            .windows(2)
+            .enumerate()
+            .map(|(k, w)| (thinness(&w[0].points, &w[0].triangles), k))
+            .collect();
+        thinnest.sort_by(|x, y| x.0.total_cmp(&y.0));
+        let take = if cfg!(debug_assertions) { 8 } else { 48 };
+        for &(_, k) in thinnest.iter().take(take) {
+            let w = &keys[k..k + 2];
+            assert_eq!(
+                checker(&w[0].points, &w[1].points, &w[0].triangles),
+                None,
+                "pair {index}, segment {k}"
+            );
+        }
+    }
 }

@@ -28,6 +28,7 @@
 //! that cannot be laid out or that no path reaches hands over to the disk;
 //! every such step is recorded as a [`Fallback`].
 
+mod off_path;
 pub(crate) mod target;
 
 use crate::flip::canonical;
@@ -52,7 +53,9 @@ pub(crate) const LEG_STEP: f64 = 1.0 / 32.0;
 pub(crate) struct Leg {
     pub(crate) plan: LegPlan,
     pub(crate) path: ThirdVertexPath,
-    /// Local parameters of the checked samples, from 0 to `s_end`.
+    /// Local parameters of the checked samples, from 0 to `s_end`;
+    /// once the keys are placed, of the keys (non-decreasing: keys off
+    /// the path can share one, [`Leg::certify_off_path`]).
     pub(crate) samples: Vec<f64>,
     /// Cumulative largest vertex move at each sample (0 at the first).
     pub(crate) travel: Vec<f64>,
@@ -248,18 +251,24 @@ impl Leg {
             aborted,
             ..
         } = out;
-        let mut travel = Vec::with_capacity(keys.len());
-        travel.push(0.0);
-        for w in keys.windows(2) {
-            let step = moves(&w[0], &w[1]).0;
-            travel.push(travel.last().copied().unwrap_or(0.0) + step);
-        }
         self.samples = samples;
         self.keys = keys;
-        self.travel = travel;
+        self.set_travel();
         self.certified = certified;
         self.repaired.clear();
         (!aborted).then_some(bridges)
+    }
+
+    /// Sets the travel table from the keys: the cumulative largest vertex
+    /// move of the segments between them.
+    fn set_travel(&mut self) {
+        let mut travel = Vec::with_capacity(self.keys.len());
+        travel.push(0.0);
+        for w in self.keys.windows(2) {
+            let step = moves(&w[0], &w[1]).0;
+            travel.push(travel.last().copied().unwrap_or(0.0) + step);
+        }
+        self.travel = travel;
     }
 
     /// The triangulation of the segment from key `k` to the next: the
@@ -301,6 +310,85 @@ impl Leg {
             *c |= r.is_some();
         }
         self.repaired = repaired;
+        count
+    }
+
+    /// Certifies each segment still uncertified after
+    /// [`Leg::repair_keys`], where it can, by keys off the leg's path
+    /// (`off_path`: a bridge split in its own parameter, or the failing
+    /// feature enlarged first), each within `tol` of the segment's chord.
+    /// The new keys take parameters evenly spaced inside the segment's
+    /// (non-decreasing).
+    /// Returns how many segments were certified so.
+    pub(crate) fn certify_off_path(&mut self, tol: f64) -> usize {
+        use rayon::prelude::*;
+        if self.certified.iter().all(|&c| c) {
+            return 0;
+        }
+        let (tris, margin) = (self.plan.triangles(), self.plan.fan_margin());
+        // Per segment certified so: its new keys and their parameters.
+        type Found = (usize, Vec<(f64, Vec<Point>)>);
+        let found: Vec<Found> = self
+            .certified
+            .par_iter()
+            .enumerate()
+            .filter(|&(_, &c)| !c)
+            .filter_map(|(k, _)| {
+                let (a, b) = (&self.keys[k], &self.keys[k + 1]);
+                let inner = off_path::off_path_keys(a, b, tris, margin, tol)?;
+                // Parameters spaced evenly inside the segment's, in order
+                // (some equal where the segment spans fewer doubles than
+                // it gets keys: frames are timed by the keys' moves, and
+                // the parameter only places the path's recovery).
+                let (s0, s1) = (self.samples[k], self.samples[k + 1]);
+                let count = inner.len() as f64 + 1.0;
+                let mut last = s0;
+                let keyed = inner
+                    .into_iter()
+                    .enumerate()
+                    .map(|(i, p)| {
+                        let even = s0 + (s1 - s0) * ((i + 1) as f64 / count);
+                        last = even.clamp(last, s1);
+                        (last, p)
+                    })
+                    .collect();
+                Some((k, keyed))
+            })
+            .collect();
+        if found.is_empty() {
+            return 0;
+        }
+        let count = found.len();
+        let segments = self.certified.len();
+        let (mut samples, mut keys) = (Vec::new(), Vec::new());
+        let (mut certified, mut repaired) = (Vec::new(), Vec::new());
+        let old_keys = std::mem::take(&mut self.keys);
+        let mut found = found.into_iter().peekable();
+        for (k, key) in old_keys.into_iter().enumerate() {
+            samples.push(self.samples[k]);
+            keys.push(key);
+            if k == segments {
+                break;
+            }
+            if let Some((_, inner)) = found.next_if(|(j, _)| *j == k) {
+                for (s, p) in inner {
+                    certified.push(true);
+                    repaired.push(None);
+                    samples.push(s);
+                    keys.push(p);
+                }
+                certified.push(true);
+                repaired.push(None);
+            } else {
+                certified.push(self.certified[k]);
+                repaired.push(self.repaired.get(k).cloned().flatten());
+            }
+        }
+        self.samples = samples;
+        self.keys = keys;
+        self.certified = certified;
+        self.repaired = repaired;
+        self.set_travel();
         count
     }
 

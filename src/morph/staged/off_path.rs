@@ -1,0 +1,296 @@
+//! Keys off the path (docs/design.md §12, "Keys off the path"): for a
+//! segment between two keys that no key taken from the leg's path
+//! certifies, and no flip of its triangulation either.
+//!
+//! Such a segment is short in the leg's parameter (split down to its
+//! finest step) and holds a feature the keys' doubles barely carry: a
+//! needle whose short edge is a few units in the last place, or a shape
+//! that grows by many times its size within the finest step. Two routes,
+//! each certified exactly segment by segment, so that trying them costs
+//! time but never validity:
+//!
+//! 1. **A bridge.** A compatible morph planned between the two keys on the
+//!    leg's triangulation (both are valid), whose straight path is split
+//!    in its own parameter, far finer than the leg's finest step, until
+//!    every segment is certified.
+//! 2. **The feature enlarged.** The vertices around the failing triangle
+//!    (or fan) that lie far closer to each other than to any other vertex
+//!    are scaled up about one of them by a power of two, at both keys: the
+//!    scaling is exact in doubles (checked), so the straight motion from a
+//!    key to its enlarged copy is a pure scaling of that cluster and keeps
+//!    its triangles' orientation for every s. The bridge is then planned
+//!    between the enlarged keys, where the feature is many units in the
+//!    last place wide. The enlargement stays within a tenth of the key
+//!    tolerance.
+//!
+//! Every key added stays within the key tolerance of the chord it
+//! replaces.
+
+use crate::certify::{Defect, Player, certify_segment, segment_holds};
+use crate::geom::Point;
+use crate::immersion::check_triangles;
+use crate::morph::{Compatible, ThirdVertexPath};
+use crate::tree::RootChoice;
+
+/// Deepest split of a bridge, in its own parameter (a bridge spans one
+/// segment of the leg, itself down to 2⁻⁴⁴ of the leg).
+const MAX_DEPTH: u32 = 24;
+
+/// Most keys a bridge may add to one segment.
+const MAX_KEYS: usize = 4096;
+
+/// Most clusters tried around one failure, smallest first.
+const MAX_CLUSTERS: usize = 3;
+
+/// How much closer a cluster's vertices are to each other than to the
+/// nearest other vertex, at the least.
+const CLUSTER_GAP: f64 = 8.0;
+
+/// The keys strictly between `a` and `b` (two valid shapes under `tris`,
+/// the ends of a segment that is not certified) such that every straight
+/// segment from `a` through them to `b` is certified for every s in exact
+/// arithmetic, each within `tol` of the chord from `a` to `b`; `None`
+/// where neither route finds them.
+pub(crate) fn off_path_keys(
+    a: &[Point],
+    b: &[Point],
+    tris: &[[u32; 3]],
+    fan_margin: f64,
+    tol: f64,
+) -> Option<Vec<Vec<Point>>> {
+    if let Some(keys) = bridged(a, b, tris, fan_margin, &Chord { a, b, tol }) {
+        return Some(keys);
+    }
+    enlarged(a, b, tris, fan_margin, tol)
+}
+
+/// The chord a segment's new keys must keep within `tol` of.
+struct Chord<'a> {
+    a: &'a [Point],
+    b: &'a [Point],
+    tol: f64,
+}
+
+impl Chord<'_> {
+    /// Whether every vertex of `p` lies within the tolerance of its own
+    /// straight segment from `a` to `b`.
+    fn near(&self, p: &[Point]) -> bool {
+        p.iter().zip(self.a.iter().zip(self.b)).all(|(x, (a, b))| {
+            let d = *b - *a;
+            let len2 = d.length_squared();
+            let w = if len2 > 0.0 {
+                ((*x - *a).dot(d) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (*x - a.lerp(*b, w)).length() <= self.tol
+        })
+    }
+}
+
+/// Route 1: the interior keys along the straight path of a compatible
+/// morph from `a` to `b`, split at midpoints until every segment is
+/// certified. `chord` bounds how far they may stray (the chord's fraction
+/// is the bridge's parameter).
+fn bridged(
+    a: &[Point],
+    b: &[Point],
+    tris: &[[u32; 3]],
+    fan_margin: f64,
+    chord: &Chord<'_>,
+) -> Option<Vec<Vec<Point>>> {
+    let plan = Compatible::new(a, b, tris, RootChoice::Disk, fan_margin).ok()?;
+    let path = |u: f64| plan.positions(u, ThirdVertexPath::Straight);
+    let mut keys = Vec::new();
+    let mut budget = MAX_KEYS;
+    let split = Split {
+        path: &path,
+        tris,
+        chord,
+    };
+    split
+        .run((0.0, a), (1.0, b), MAX_DEPTH, &mut keys, &mut budget)
+        .then_some(keys)
+}
+
+/// A bridge being split.
+struct Split<'a> {
+    path: &'a dyn Fn(f64) -> Vec<Point>,
+    tris: &'a [[u32; 3]],
+    chord: &'a Chord<'a>,
+}
+
+impl Split<'_> {
+    /// Appends to `keys` the keys strictly between `a` and `b` (parameter,
+    /// shape); false where the segment cannot be certified within the
+    /// depth and the budget.
+    fn run(
+        &self,
+        a: (f64, &[Point]),
+        b: (f64, &[Point]),
+        depth: u32,
+        keys: &mut Vec<Vec<Point>>,
+        budget: &mut usize,
+    ) -> bool {
+        if segment_holds(a.1, b.1, self.tris, Player::Exact) {
+            return true;
+        }
+        if depth == 0 || *budget == 0 {
+            return false;
+        }
+        *budget -= 1;
+        let um = 0.5 * (a.0 + b.0);
+        let m = (self.path)(um);
+        if check_triangles(&m, self.tris).is_err() || !self.chord.near(&m) {
+            return false;
+        }
+        if !self.run(a, (um, &m), depth - 1, keys, budget) {
+            return false;
+        }
+        keys.push(m.clone());
+        self.run((um, &m), b, depth - 1, keys, budget)
+    }
+}
+
+/// Route 2: the cluster around the segment's first failure enlarged at
+/// both keys, and the bridge between the enlarged keys; the interior keys
+/// are the enlarged `a`, the bridge's keys and the enlarged `b`.
+fn enlarged(
+    a: &[Point],
+    b: &[Point],
+    tris: &[[u32; 3]],
+    fan_margin: f64,
+    tol: f64,
+) -> Option<Vec<Vec<Point>>> {
+    let failure = certify_segment(a, b, tris, Player::Exact).ok()?.failure?;
+    let corners: Vec<usize> = match failure.defect {
+        Defect::Triangle { corners, .. } => corners.iter().map(|&c| c as usize).collect(),
+        Defect::Fan { vertex } => vec![vertex],
+        Defect::Start(_) => return None,
+    };
+    let centre = corners[0];
+    // The feature's size: its corners' largest distance at either key.
+    let size = corners
+        .iter()
+        .flat_map(|&i| corners.iter().map(move |&j| (i, j)))
+        .map(|(i, j)| (a[i] - a[j]).length().max((b[i] - b[j]).length()))
+        .fold(0.0f64, f64::max);
+    // Every vertex by its larger distance from the centre at the two keys.
+    let mut by_distance: Vec<(f64, usize)> = (0..a.len())
+        .map(|i| {
+            let d = (a[i] - a[centre]).length().max((b[i] - b[centre]).length());
+            (d, i)
+        })
+        .collect();
+    by_distance.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let cuts = (0..by_distance.len().saturating_sub(1)).filter(|&j| {
+        let r = by_distance[j].0.max(size);
+        by_distance[j].0 >= size && by_distance[j + 1].0 > CLUSTER_GAP * r
+    });
+    for j in cuts.take(MAX_CLUSTERS) {
+        let radius = by_distance[j].0.max(size);
+        if radius.is_nan() || radius <= 0.0 {
+            continue;
+        }
+        let gap = by_distance[j + 1].0;
+        let cluster: Vec<usize> = by_distance[..=j].iter().map(|&(_, i)| i).collect();
+        // The scale: a power of two keeping the cluster well inside its
+        // gap and its moves within a tenth of the tolerance.
+        let most = (gap / (4.0 * radius)).min(0.1 * tol / radius);
+        if most.is_nan() || most < 4.0 {
+            continue;
+        }
+        let mut exponent = most.log2().floor() as i32;
+        while exponent >= 2 {
+            let scale = 2f64.powi(exponent);
+            exponent -= 4;
+            let (Some(ea), Some(eb)) = (
+                scaled(a, &cluster, centre, scale),
+                scaled(b, &cluster, centre, scale),
+            ) else {
+                continue;
+            };
+            if check_triangles(&ea, tris).is_err()
+                || check_triangles(&eb, tris).is_err()
+                || !segment_holds(a, &ea, tris, Player::Exact)
+                || !segment_holds(&eb, b, tris, Player::Exact)
+            {
+                continue;
+            }
+            let chord = Chord {
+                a: &ea,
+                b: &eb,
+                tol: tol - scale * radius,
+            };
+            if let Some(mut inner) = bridged(&ea, &eb, tris, fan_margin, &chord) {
+                inner.insert(0, ea);
+                inner.push(eb);
+                return Some(inner);
+            }
+        }
+    }
+    None
+}
+
+/// `p` with the vertices of `cluster` scaled by `scale` (a power of two)
+/// about vertex `centre`; `None` unless every step is exact in doubles (so
+/// the straight motion from `p` to the result scales the cluster exactly).
+fn scaled(p: &[Point], cluster: &[usize], centre: usize, scale: f64) -> Option<Vec<Point>> {
+    let c = p[centre];
+    let mut q = p.to_vec();
+    for &i in cluster {
+        let mut x = [0.0; 2];
+        for (axis, out) in x.iter_mut().enumerate() {
+            let d = exact_sum(p[i][axis], -c[axis])?;
+            let far = d * scale;
+            if !far.is_finite() || far / scale != d {
+                return None;
+            }
+            *out = exact_sum(c[axis], far)?;
+        }
+        q[i] = Point::new(x[0], x[1]);
+    }
+    Some(q)
+}
+
+/// `a + b` where it is exact in doubles (Knuth's two-sum has no error
+/// term), else `None`.
+fn exact_sum(a: f64, b: f64) -> Option<f64> {
+    let s = a + b;
+    let bb = s - a;
+    let err = (a - (s - bb)) + (b - bb);
+    (s.is_finite() && err == 0.0).then_some(s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A cluster scaled by a power of two keeps every offset from its
+    /// centre exactly (so the straight motion to it is a pure scaling);
+    /// where the scaled vertex cannot be held exactly, nothing is scaled.
+    #[test]
+    fn a_cluster_is_scaled_exactly_or_not_at_all() {
+        let c = Point::new(0.3, 0.7);
+        let ulp = f64::EPSILON / 2.0;
+        let p = vec![
+            c,
+            Point::new(0.3 + 3.0 * ulp, 0.7),
+            Point::new(0.3, 0.7 + 5.0 * ulp),
+            Point::new(2.0, -1.0),
+        ];
+        let q = scaled(&p, &[0, 1, 2], 0, 1024.0).expect("exact");
+        for i in 0..3 {
+            assert_eq!(q[i] - c, (p[i] - c) * 1024.0, "vertex {i}");
+            assert!(q[i] != p[i] || i == 0);
+        }
+        assert_eq!(q[3], p[3], "a vertex outside the cluster stays");
+        // 1 + 2⁻⁵² and 1 + 2⁻⁵¹ are one unit in the last place apart; scaled
+        // by 2⁵³ that unit is 2, and 3 + 2⁻⁵² is not a double.
+        let one = 1.0 + f64::EPSILON;
+        let p = vec![Point::new(one, 0.0), Point::new(one + f64::EPSILON, 0.0)];
+        assert_eq!(scaled(&p, &[0, 1], 0, 2f64.powi(53)), None);
+        assert_eq!(exact_sum(1.0, f64::EPSILON / 4.0), None);
+        assert_eq!(exact_sum(1.0, f64::EPSILON), Some(1.0 + f64::EPSILON));
+    }
+}

@@ -10,9 +10,9 @@
 //! time but never validity:
 //!
 //! 1. **A bridge.** A compatible morph planned between the two keys on the
-//!    leg's triangulation (both are valid), whose straight path is split
-//!    in its own parameter, far finer than the leg's finest step, until
-//!    every segment is certified.
+//!    leg's triangulation (both are valid), whose straight path (else its
+//!    hybrid, else its rigid one) is split in its own parameter, far finer
+//!    than the leg's finest step, until every segment is certified.
 //! 2. **The feature enlarged.** The vertices around the failing triangle
 //!    (or fan) that lie far closer to each other than to any other vertex
 //!    are scaled up about one of them by a power of two, at both keys: the
@@ -99,19 +99,37 @@ fn bridged(
     fan_margin: f64,
     chord: &Chord<'_>,
 ) -> Option<Vec<Vec<Point>>> {
-    let plan = Compatible::new(a, b, tris, RootChoice::Disk, fan_margin).ok()?;
-    let path = |u: f64| plan.positions(u, ThirdVertexPath::Straight);
-    let mut keys = Vec::new();
-    let mut budget = MAX_KEYS;
-    let split = Split {
-        path: &path,
-        tris,
-        chord,
-    };
-    split
-        .run((0.0, a), (1.0, b), MAX_DEPTH, &mut keys, &mut budget)
-        .then_some(keys)
+    // Planned from each end (the layout's rounding differs).
+    let forward = Compatible::new(a, b, tris, RootChoice::Disk, fan_margin).ok();
+    let backward = Compatible::new(b, a, tris, RootChoice::Disk, fan_margin).ok();
+    let plans = [(forward, false), (backward, true)];
+    let tries = plans
+        .iter()
+        .filter_map(|(plan, back)| plan.as_ref().map(|plan| (plan, *back)))
+        .flat_map(|(plan, back)| BRIDGE_PATHS.iter().map(move |&p| (plan, back, p)));
+    tries.into_iter().find_map(|(plan, back, p)| {
+        let path = |u: f64| plan.positions(if back { 1.0 - u } else { u }, p);
+        let mut keys = Vec::new();
+        let mut budget = MAX_KEYS;
+        let split = Split {
+            path: &path,
+            tris,
+            chord,
+        };
+        split
+            .run((0.0, a), (1.0, b), MAX_DEPTH, &mut keys, &mut budget)
+            .then_some(keys)
+    })
 }
+
+/// The bridge's paths, in order: the straightest first, then the two
+/// that lay the shape out from angles, whose layout a rounding turns
+/// over elsewhere.
+const BRIDGE_PATHS: [ThirdVertexPath; 3] = [
+    ThirdVertexPath::Straight,
+    ThirdVertexPath::Hybrid,
+    ThirdVertexPath::Rigid,
+];
 
 /// A bridge being split.
 struct Split<'a> {
@@ -168,13 +186,31 @@ fn enlarged(
         Defect::Fan { vertex } => vec![vertex],
         Defect::Start(_) => return None,
     };
-    let centre = corners[0];
     // The feature's size: its corners' largest distance at either key.
     let size = corners
         .iter()
         .flat_map(|&i| corners.iter().map(move |&j| (i, j)))
         .map(|(i, j)| (a[i] - a[j]).length().max((b[i] - b[j]).length()))
         .fold(0.0f64, f64::max);
+    corners
+        .iter()
+        .find_map(|&centre| enlarged_about(a, b, tris, fan_margin, tol, centre, size))
+}
+
+/// Route 2 about the corner `centre` of a failing feature of `size`.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the segment, its triangulation and margin, the tolerance and the feature"
+)]
+fn enlarged_about(
+    a: &[Point],
+    b: &[Point],
+    tris: &[[u32; 3]],
+    fan_margin: f64,
+    tol: f64,
+    centre: usize,
+    size: f64,
+) -> Option<Vec<Vec<Point>>> {
     // Every vertex by its larger distance from the centre at the two keys.
     let mut by_distance: Vec<(f64, usize)> = (0..a.len())
         .map(|i| {
@@ -197,13 +233,13 @@ fn enlarged(
         // The scale: a power of two keeping the cluster well inside its
         // gap and its moves within a tenth of the tolerance.
         let most = (gap / (4.0 * radius)).min(0.1 * tol / radius);
-        if most.is_nan() || most < 4.0 {
+        if most.is_nan() || most < 2.0 {
             continue;
         }
         let mut exponent = most.log2().floor() as i32;
-        while exponent >= 2 {
+        while exponent >= 1 {
             let scale = 2f64.powi(exponent);
-            exponent -= 4;
+            exponent -= 2;
             let (Some(ea), Some(eb)) = (
                 scaled(a, &cluster, centre, scale),
                 scaled(b, &cluster, centre, scale),

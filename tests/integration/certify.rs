@@ -998,27 +998,8 @@ fn keys_left_uncertified_are_planned_again_by_a_route_that_certifies() {
         // The independent checker on every segment (every 16th in the
         // debug profile, where its rational arithmetic is slow; the
         // certificate above took them all).
-        // The independent checker on the segments whose keys hold the
-        // thinnest triangles (the features keys off the path carry; its
-        // rational arithmetic is too slow for all of them).
-        let thinness = |p: &[Point], tris: &[[u32; 3]]| {
-            tris.iter()
-                .map(|&[a, b, c]| {
-                    let (a, b, c) = (p[a as usize], p[b as usize], p[c as usize]);
-                    let longest = (b - a).length().max((c - b).length()).max((a - c).length());
-                    (b - a).perp_dot(c - a).abs() / (longest * longest)
-                })
-                .fold(f64::INFINITY, f64::min)
-        };
-        let mut thinnest: Vec<(f64, usize)> = keys
-            .windows(2)
-            .enumerate()
-            .map(|(k, w)| (thinness(&w[0].points, &w[0].triangles), k))
-            .collect();
-        thinnest.sort_by(|x, y| x.0.total_cmp(&y.0));
-        let take = if cfg!(debug_assertions) { 8 } else { 48 };
-        for &(_, k) in thinnest.iter().take(take) {
-            let w = &keys[k..k + 2];
+        let every = if cfg!(debug_assertions) { 16 } else { 1 };
+        for (k, w) in keys.windows(2).enumerate().step_by(every) {
             assert_eq!(
                 checker(&w[0].points, &w[1].points, &w[0].triangles),
                 None,
@@ -1103,23 +1084,8 @@ fn segments_no_key_on_the_path_certifies_are_certified_by_keys_off_it() {
         // The independent checker on the segments whose keys hold the
         // thinnest triangles (the features keys off the path carry; its
         // rational arithmetic is too slow for all of them).
-        let thinness = |p: &[Point], tris: &[[u32; 3]]| {
-            tris.iter()
-                .map(|&[a, b, c]| {
-                    let (a, b, c) = (p[a as usize], p[b as usize], p[c as usize]);
-                    let longest = (b - a).length().max((c - b).length()).max((a - c).length());
-                    (b - a).perp_dot(c - a).abs() / (longest * longest)
-                })
-                .fold(f64::INFINITY, f64::min)
-        };
-        let mut thinnest: Vec<(f64, usize)> = keys
-            .windows(2)
-            .enumerate()
-            .map(|(k, w)| (thinness(&w[0].points, &w[0].triangles), k))
-            .collect();
-        thinnest.sort_by(|x, y| x.0.total_cmp(&y.0));
         let take = if cfg!(debug_assertions) { 8 } else { 48 };
-        for &(_, k) in thinnest.iter().take(take) {
+        for k in thinnest_segments(&keys, take) {
             let w = &keys[k..k + 2];
             assert_eq!(
                 checker(&w[0].points, &w[1].points, &w[0].triangles),
@@ -1128,4 +1094,25 @@ fn segments_no_key_on_the_path_certifies_are_certified_by_keys_off_it() {
             );
         }
     }
+}
+
+/// The `take` segments between `keys` whose first key holds the thinnest
+/// triangle (least area over the square of its longest side).
+fn thinnest_segments(keys: &[immerse::Keyframe], take: usize) -> Vec<usize> {
+    let thinness = |p: &[Point], tris: &[[u32; 3]]| {
+        tris.iter()
+            .map(|&[a, b, c]| {
+                let (a, b, c) = (p[a as usize], p[b as usize], p[c as usize]);
+                let longest = (b - a).length().max((c - b).length()).max((a - c).length());
+                (b - a).perp_dot(c - a).abs() / (longest * longest)
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let mut by_thinness: Vec<(f64, usize)> = keys
+        .windows(2)
+        .enumerate()
+        .map(|(k, w)| (thinness(&w[0].points, &w[0].triangles), k))
+        .collect();
+    by_thinness.sort_by(|x, y| x.0.total_cmp(&y.0));
+    by_thinness.into_iter().take(take).map(|(_, k)| k).collect()
 }

@@ -58,10 +58,59 @@ pub(crate) fn off_path_keys(
     fan_margin: f64,
     tol: f64,
 ) -> Option<Vec<Vec<Point>>> {
-    if let Some(keys) = bridged(a, b, tris, fan_margin, &Chord { a, b, tol }) {
-        return Some(keys);
+    let inner = bridged(a, b, tris, fan_margin, &Chord { a, b, tol })
+        .or_else(|| enlarged(a, b, tris, fan_margin, tol))?;
+    Some(fewest(a, inner, b, tris))
+}
+
+/// The keys of `inner` that a greedy pass from `a` keeps: from each kept
+/// key, the farthest later one (found by doubling, then bisection) whose
+/// straight segment from it is certified, so that a bridge split at
+/// midpoints keeps only the keys it needs. Every segment between kept
+/// keys is certified; each kept key keeps within the tolerance of its
+/// chord, and so does every point between two of them (the distance to a
+/// segment is convex).
+fn fewest(a: &[Point], inner: Vec<Vec<Point>>, b: &[Point], tris: &[[u32; 3]]) -> Vec<Vec<Point>> {
+    let last = inner.len() + 1;
+    let at = |i: usize| -> &[Point] {
+        match i {
+            0 => a,
+            i if i == last => b,
+            i => &inner[i - 1],
+        }
+    };
+    let holds = |i: usize, j: usize| segment_holds(at(i), at(j), tris, Player::Exact);
+    let mut kept = Vec::new();
+    let mut i = 0;
+    while i < last {
+        // i + 1 holds: the split certified it.
+        let (mut good, mut step, mut bad) = (i + 1, 1, last + 1);
+        while good + step <= last {
+            if holds(i, good + step) {
+                good += step;
+                step *= 2;
+            } else {
+                bad = good + step;
+                break;
+            }
+        }
+        while bad > good + 1 {
+            let mid = good + (bad - good) / 2;
+            if holds(i, mid) {
+                good = mid;
+            } else {
+                bad = mid;
+            }
+        }
+        if good < last {
+            kept.push(good);
+        }
+        i = good;
     }
-    enlarged(a, b, tris, fan_margin, tol)
+    let mut inner: Vec<Option<Vec<Point>>> = inner.into_iter().map(Some).collect();
+    kept.into_iter()
+        .filter_map(|k| inner[k - 1].take())
+        .collect()
 }
 
 /// The chord a segment's new keys must keep within `tol` of.

@@ -1354,30 +1354,7 @@ fn merge_keys(leg: &mut Leg, tol: f64) {
                 reach *= 2;
             }
         }
-        let (mut good, mut step) = (first, 1usize);
-        let mut bad = count;
-        while good + step < count {
-            if joins(i, good + step) {
-                good += step;
-                step *= 2;
-            } else {
-                bad = good + step;
-                break;
-            }
-        }
-        if bad == count && good + 1 < count && joins(i, count - 1) {
-            good = count - 1;
-        }
-        // Bisect between the last join and the first failure.
-        let mut hi = bad.min(count);
-        while hi > good + 1 {
-            let mid = good + (hi - good) / 2;
-            if joins(i, mid) {
-                good = mid;
-            } else {
-                hi = mid;
-            }
-        }
+        let good = crate::morph::staged::farthest_join(first, count, |j| joins(i, j));
         kept.push(good);
         i = good;
     }

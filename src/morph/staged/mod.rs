@@ -660,6 +660,42 @@ impl KeyOut {
     }
 }
 
+/// The farthest index in `good..count` that `joins` accepts, from `good`
+/// (accepted): tried at doubling steps, then at the last index where no
+/// step was refused, then by bisection between the last accepted and the
+/// first refused. `joins` need not be monotone; the answer is one it
+/// accepts (or `good`). O(log k) calls for an answer k indices on.
+pub(crate) fn farthest_join(
+    mut good: usize,
+    count: usize,
+    mut joins: impl FnMut(usize) -> bool,
+) -> usize {
+    let mut step = 1usize;
+    let mut bad = count;
+    while good + step < count {
+        if joins(good + step) {
+            good += step;
+            step *= 2;
+        } else {
+            bad = good + step;
+            break;
+        }
+    }
+    if bad == count && good + 1 < count && joins(count - 1) {
+        good = count - 1;
+    }
+    let mut hi = bad.min(count);
+    while hi > good + 1 {
+        let mid = good + (hi - good) / 2;
+        if joins(mid) {
+            good = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    good
+}
+
 /// How much the total area of a straight segment's midpoint may differ
 /// from the path's there, relative to the path's (1 %).
 pub(crate) const KEY_AREA_TOLERANCE: f64 = 0.01;

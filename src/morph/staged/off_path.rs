@@ -64,7 +64,7 @@ pub(crate) fn off_path_keys(
 }
 
 /// The keys of `inner` that a greedy pass from `a` keeps: from each kept
-/// key, the farthest later one (found by doubling, then bisection) whose
+/// key, the farthest later one (`farthest_join`: doubling, then bisection) whose
 /// straight segment from it is certified, so that a bridge split at
 /// midpoints keeps only the keys it needs. Every segment between kept
 /// keys is certified; each kept key keeps within the tolerance of its
@@ -84,24 +84,7 @@ fn fewest(a: &[Point], inner: Vec<Vec<Point>>, b: &[Point], tris: &[[u32; 3]]) -
     let mut i = 0;
     while i < last {
         // i + 1 holds: the split certified it.
-        let (mut good, mut step, mut bad) = (i + 1, 1, last + 1);
-        while good + step <= last {
-            if holds(i, good + step) {
-                good += step;
-                step *= 2;
-            } else {
-                bad = good + step;
-                break;
-            }
-        }
-        while bad > good + 1 {
-            let mid = good + (bad - good) / 2;
-            if holds(i, mid) {
-                good = mid;
-            } else {
-                bad = mid;
-            }
-        }
+        let good = super::farthest_join(i + 1, last + 1, |j| holds(i, j));
         if good < last {
             kept.push(good);
         }

@@ -58,52 +58,63 @@ pub(crate) fn off_path_keys(
     fan_margin: f64,
     tol: f64,
 ) -> Option<Vec<Vec<Point>>> {
-    let inner = bridged(a, b, tris, fan_margin, &Chord { a, b, tol })
-        .or_else(|| enlarged(a, b, tris, fan_margin, tol))?;
-    Some(fewest(a, inner, b, tris))
-}
-
-/// The keys of `inner` that a greedy pass from `a` keeps: from each kept
-/// key, the farthest later one (`farthest_join`: doubling, then bisection) whose
-/// straight segment from it is certified, so that a bridge split at
-/// midpoints keeps only the keys it needs. Every segment between kept
-/// keys is certified; each kept key keeps within the tolerance of its
-/// chord, and so does every point between two of them (the distance to a
-/// segment is convex).
-fn fewest(a: &[Point], inner: Vec<Vec<Point>>, b: &[Point], tris: &[[u32; 3]]) -> Vec<Vec<Point>> {
-    let last = inner.len() + 1;
-    let at = |i: usize| -> &[Point] {
-        match i {
-            0 => a,
-            i if i == last => b,
-            i => &inner[i - 1],
-        }
+    let gap = Gap {
+        a,
+        b,
+        tris,
+        fan_margin,
+        tol,
     };
-    let holds = |i: usize, j: usize| segment_holds(at(i), at(j), tris, Player::Exact);
-    let mut kept = Vec::new();
-    let mut i = 0;
-    while i < last {
-        // i + 1 holds: the split certified it.
-        let good = super::farthest_join(i + 1, last + 1, |j| holds(i, j));
-        if good < last {
-            kept.push(good);
-        }
-        i = good;
-    }
-    let mut inner: Vec<Option<Vec<Point>>> = inner.into_iter().map(Some).collect();
-    kept.into_iter()
-        .filter_map(|k| inner[k - 1].take())
-        .collect()
+    let inner = gap.bridged().or_else(|| gap.enlarged())?;
+    Some(gap.fewest(inner))
 }
 
-/// The chord a segment's new keys must keep within `tol` of.
-struct Chord<'a> {
+/// A segment to bridge: two valid shapes under one triangulation, the
+/// fan margin its plans lay out with, and how far its new keys may stray
+/// from its chord.
+#[derive(Clone, Copy)]
+struct Gap<'a> {
     a: &'a [Point],
     b: &'a [Point],
+    tris: &'a [[u32; 3]],
+    fan_margin: f64,
     tol: f64,
 }
 
-impl Chord<'_> {
+impl Gap<'_> {
+    /// The keys of `inner` that a greedy pass from `a` keeps: from each
+    /// kept key, the farthest later one (`farthest_join`: doubling, then
+    /// bisection) whose straight segment from it is certified, so that a
+    /// bridge split at midpoints keeps only the keys it needs. Every
+    /// segment between kept keys is certified; each kept key keeps within
+    /// the tolerance of its chord, and so does every point between two of
+    /// them (the distance to a segment is convex).
+    fn fewest(&self, inner: Vec<Vec<Point>>) -> Vec<Vec<Point>> {
+        let last = inner.len() + 1;
+        let at = |i: usize| -> &[Point] {
+            match i {
+                0 => self.a,
+                i if i == last => self.b,
+                i => &inner[i - 1],
+            }
+        };
+        let holds = |i: usize, j: usize| segment_holds(at(i), at(j), self.tris, Player::Exact);
+        let mut kept = Vec::new();
+        let mut i = 0;
+        while i < last {
+            // i + 1 holds: the split certified it.
+            let good = super::farthest_join(i + 1, last + 1, |j| holds(i, j));
+            if good < last {
+                kept.push(good);
+            }
+            i = good;
+        }
+        let mut inner: Vec<Option<Vec<Point>>> = inner.into_iter().map(Some).collect();
+        kept.into_iter()
+            .filter_map(|k| inner[k - 1].take())
+            .collect()
+    }
+
     /// Whether every vertex of `p` lies within the tolerance of its own
     /// straight segment from `a` to `b`.
     fn near(&self, p: &[Point]) -> bool {
@@ -118,40 +129,130 @@ impl Chord<'_> {
             (*x - a.lerp(*b, w)).length() <= self.tol
         })
     }
-}
 
-/// Route 1: the interior keys along the straight path of a compatible
-/// morph from `a` to `b`, split at midpoints until every segment is
-/// certified. `chord` bounds how far they may stray (the chord's fraction
-/// is the bridge's parameter).
-fn bridged(
-    a: &[Point],
-    b: &[Point],
-    tris: &[[u32; 3]],
-    fan_margin: f64,
-    chord: &Chord<'_>,
-) -> Option<Vec<Vec<Point>>> {
-    // Planned from each end (the layout's rounding differs).
-    let forward = Compatible::new(a, b, tris, RootChoice::Disk, fan_margin).ok();
-    let backward = Compatible::new(b, a, tris, RootChoice::Disk, fan_margin).ok();
-    let plans = [(forward, false), (backward, true)];
-    let tries = plans
-        .iter()
-        .filter_map(|(plan, back)| plan.as_ref().map(|plan| (plan, *back)))
-        .flat_map(|(plan, back)| BRIDGE_PATHS.iter().map(move |&p| (plan, back, p)));
-    tries.into_iter().find_map(|(plan, back, p)| {
-        let path = |u: f64| plan.positions(if back { 1.0 - u } else { u }, p);
-        let mut keys = Vec::new();
-        let mut budget = MAX_KEYS;
-        let split = Split {
-            path: &path,
-            tris,
-            chord,
+    /// Route 1: the interior keys along the straight path of a compatible
+    /// morph from `a` to `b`, split at midpoints until every segment is
+    /// certified, each within the tolerance of the chord (the chord's
+    /// fraction is the bridge's parameter). Planned from `a`, and only
+    /// where that fails from `b` (the layout's rounding differs).
+    fn bridged(&self) -> Option<Vec<Vec<Point>>> {
+        for back in [false, true] {
+            let (from, to) = if back {
+                (self.b, self.a)
+            } else {
+                (self.a, self.b)
+            };
+            let Ok(plan) = Compatible::new(from, to, self.tris, RootChoice::Disk, self.fan_margin)
+            else {
+                continue;
+            };
+            for p in BRIDGE_PATHS {
+                let path = |u: f64| plan.positions(if back { 1.0 - u } else { u }, p);
+                let mut keys = Vec::new();
+                let mut budget = MAX_KEYS;
+                let split = Split {
+                    path: &path,
+                    gap: self,
+                };
+                if split.run(
+                    (0.0, self.a),
+                    (1.0, self.b),
+                    MAX_DEPTH,
+                    &mut keys,
+                    &mut budget,
+                ) {
+                    return Some(keys);
+                }
+            }
+        }
+        None
+    }
+
+    /// Route 2: the cluster around the segment's first failure enlarged
+    /// at both keys, and the bridge between the enlarged keys; the
+    /// interior keys are the enlarged `a`, the bridge's keys and the
+    /// enlarged `b`.
+    fn enlarged(&self) -> Option<Vec<Vec<Point>>> {
+        let (a, b) = (self.a, self.b);
+        let failure = certify_segment(a, b, self.tris, Player::Exact)
+            .ok()?
+            .failure?;
+        let corners: Vec<usize> = match failure.defect {
+            Defect::Triangle { corners, .. } => corners.iter().map(|&c| c as usize).collect(),
+            Defect::Fan { vertex } => vec![vertex],
+            Defect::Start(_) => return None,
         };
-        split
-            .run((0.0, a), (1.0, b), MAX_DEPTH, &mut keys, &mut budget)
-            .then_some(keys)
-    })
+        // The feature's size: its corners' largest distance at either key.
+        let size = corners
+            .iter()
+            .flat_map(|&i| corners.iter().map(move |&j| (i, j)))
+            .map(|(i, j)| (a[i] - a[j]).length().max((b[i] - b[j]).length()))
+            .fold(0.0f64, f64::max);
+        corners
+            .iter()
+            .find_map(|&centre| self.enlarged_about(centre, size))
+    }
+
+    /// Route 2 about the corner `centre` of a failing feature of `size`.
+    fn enlarged_about(&self, centre: usize, size: f64) -> Option<Vec<Vec<Point>>> {
+        let (a, b, tris) = (self.a, self.b, self.tris);
+        // Every vertex by its larger distance from the centre at the two keys.
+        let mut by_distance: Vec<(f64, usize)> = (0..a.len())
+            .map(|i| {
+                let d = (a[i] - a[centre]).length().max((b[i] - b[centre]).length());
+                (d, i)
+            })
+            .collect();
+        by_distance.sort_by(|x, y| x.0.total_cmp(&y.0));
+        let cuts = (0..by_distance.len().saturating_sub(1)).filter(|&j| {
+            let r = by_distance[j].0.max(size);
+            by_distance[j].0 >= size && by_distance[j + 1].0 > CLUSTER_GAP * r
+        });
+        for j in cuts.take(MAX_CLUSTERS) {
+            let radius = by_distance[j].0.max(size);
+            if radius.is_nan() || radius <= 0.0 {
+                continue;
+            }
+            let gap = by_distance[j + 1].0;
+            let cluster: Vec<usize> = by_distance[..=j].iter().map(|&(_, i)| i).collect();
+            // The scale: a power of two keeping the cluster well inside its
+            // gap and its moves within a tenth of the tolerance.
+            let most = (gap / (4.0 * radius)).min(0.1 * self.tol / radius);
+            if most.is_nan() || most < 2.0 {
+                continue;
+            }
+            let mut exponent = most.log2().floor() as i32;
+            while exponent >= 1 {
+                let scale = 2f64.powi(exponent);
+                exponent -= 2;
+                let (Some(ea), Some(eb)) = (
+                    scaled(a, &cluster, centre, scale),
+                    scaled(b, &cluster, centre, scale),
+                ) else {
+                    continue;
+                };
+                if check_triangles(&ea, tris).is_err()
+                    || check_triangles(&eb, tris).is_err()
+                    || !segment_holds(a, &ea, tris, Player::Exact)
+                    || !segment_holds(&eb, b, tris, Player::Exact)
+                {
+                    continue;
+                }
+                let inside = Gap {
+                    a: &ea,
+                    b: &eb,
+                    tol: self.tol - scale * radius,
+                    ..*self
+                };
+                if let Some(mut inner) = inside.bridged() {
+                    inner.insert(0, ea);
+                    inner.push(eb);
+                    return Some(inner);
+                }
+            }
+        }
+        None
+    }
 }
 
 /// The bridge's paths, in order: the straightest first, then the two
@@ -166,8 +267,7 @@ const BRIDGE_PATHS: [ThirdVertexPath; 3] = [
 /// A bridge being split.
 struct Split<'a> {
     path: &'a dyn Fn(f64) -> Vec<Point>,
-    tris: &'a [[u32; 3]],
-    chord: &'a Chord<'a>,
+    gap: &'a Gap<'a>,
 }
 
 impl Split<'_> {
@@ -182,7 +282,8 @@ impl Split<'_> {
         keys: &mut Vec<Vec<Point>>,
         budget: &mut usize,
     ) -> bool {
-        if segment_holds(a.1, b.1, self.tris, Player::Exact) {
+        let tris = self.gap.tris;
+        if segment_holds(a.1, b.1, tris, Player::Exact) {
             return true;
         }
         if depth == 0 || *budget == 0 {
@@ -191,7 +292,7 @@ impl Split<'_> {
         *budget -= 1;
         let um = 0.5 * (a.0 + b.0);
         let m = (self.path)(um);
-        if check_triangles(&m, self.tris).is_err() || !self.chord.near(&m) {
+        if check_triangles(&m, tris).is_err() || !self.gap.near(&m) {
             return false;
         }
         if !self.run(a, (um, &m), depth - 1, keys, budget) {
@@ -200,104 +301,6 @@ impl Split<'_> {
         keys.push(m.clone());
         self.run((um, &m), b, depth - 1, keys, budget)
     }
-}
-
-/// Route 2: the cluster around the segment's first failure enlarged at
-/// both keys, and the bridge between the enlarged keys; the interior keys
-/// are the enlarged `a`, the bridge's keys and the enlarged `b`.
-fn enlarged(
-    a: &[Point],
-    b: &[Point],
-    tris: &[[u32; 3]],
-    fan_margin: f64,
-    tol: f64,
-) -> Option<Vec<Vec<Point>>> {
-    let failure = certify_segment(a, b, tris, Player::Exact).ok()?.failure?;
-    let corners: Vec<usize> = match failure.defect {
-        Defect::Triangle { corners, .. } => corners.iter().map(|&c| c as usize).collect(),
-        Defect::Fan { vertex } => vec![vertex],
-        Defect::Start(_) => return None,
-    };
-    // The feature's size: its corners' largest distance at either key.
-    let size = corners
-        .iter()
-        .flat_map(|&i| corners.iter().map(move |&j| (i, j)))
-        .map(|(i, j)| (a[i] - a[j]).length().max((b[i] - b[j]).length()))
-        .fold(0.0f64, f64::max);
-    corners
-        .iter()
-        .find_map(|&centre| enlarged_about(a, b, tris, fan_margin, tol, centre, size))
-}
-
-/// Route 2 about the corner `centre` of a failing feature of `size`.
-#[allow(
-    clippy::too_many_arguments,
-    reason = "the segment, its triangulation and margin, the tolerance and the feature"
-)]
-fn enlarged_about(
-    a: &[Point],
-    b: &[Point],
-    tris: &[[u32; 3]],
-    fan_margin: f64,
-    tol: f64,
-    centre: usize,
-    size: f64,
-) -> Option<Vec<Vec<Point>>> {
-    // Every vertex by its larger distance from the centre at the two keys.
-    let mut by_distance: Vec<(f64, usize)> = (0..a.len())
-        .map(|i| {
-            let d = (a[i] - a[centre]).length().max((b[i] - b[centre]).length());
-            (d, i)
-        })
-        .collect();
-    by_distance.sort_by(|x, y| x.0.total_cmp(&y.0));
-    let cuts = (0..by_distance.len().saturating_sub(1)).filter(|&j| {
-        let r = by_distance[j].0.max(size);
-        by_distance[j].0 >= size && by_distance[j + 1].0 > CLUSTER_GAP * r
-    });
-    for j in cuts.take(MAX_CLUSTERS) {
-        let radius = by_distance[j].0.max(size);
-        if radius.is_nan() || radius <= 0.0 {
-            continue;
-        }
-        let gap = by_distance[j + 1].0;
-        let cluster: Vec<usize> = by_distance[..=j].iter().map(|&(_, i)| i).collect();
-        // The scale: a power of two keeping the cluster well inside its
-        // gap and its moves within a tenth of the tolerance.
-        let most = (gap / (4.0 * radius)).min(0.1 * tol / radius);
-        if most.is_nan() || most < 2.0 {
-            continue;
-        }
-        let mut exponent = most.log2().floor() as i32;
-        while exponent >= 1 {
-            let scale = 2f64.powi(exponent);
-            exponent -= 2;
-            let (Some(ea), Some(eb)) = (
-                scaled(a, &cluster, centre, scale),
-                scaled(b, &cluster, centre, scale),
-            ) else {
-                continue;
-            };
-            if check_triangles(&ea, tris).is_err()
-                || check_triangles(&eb, tris).is_err()
-                || !segment_holds(a, &ea, tris, Player::Exact)
-                || !segment_holds(&eb, b, tris, Player::Exact)
-            {
-                continue;
-            }
-            let chord = Chord {
-                a: &ea,
-                b: &eb,
-                tol: tol - scale * radius,
-            };
-            if let Some(mut inner) = bridged(&ea, &eb, tris, fan_margin, &chord) {
-                inner.insert(0, ea);
-                inner.push(eb);
-                return Some(inner);
-            }
-        }
-    }
-    None
 }
 
 /// `p` with the vertices of `cluster` scaled by `scale` (a power of two)

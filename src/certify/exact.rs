@@ -345,6 +345,12 @@ pub(crate) fn next_up(x: f64) -> f64 {
     f64::from_bits(if x > 0.0 { bits + 1 } else { bits - 1 })
 }
 
+/// The next double below `x` (`f64::next_down`, for the toolchain this
+/// crate supports).
+pub(crate) fn next_down(x: f64) -> f64 {
+    -next_up(-x)
+}
+
 /// `x` rounded to a double (saturating to ±∞ past the range).
 pub(crate) fn big_to_f64(x: &BigInt) -> f64 {
     let bits = x.bits();

@@ -72,7 +72,7 @@
 //! ```
 
 mod animation;
-mod exact;
+pub(crate) mod exact;
 mod filter;
 mod motion;
 mod read;

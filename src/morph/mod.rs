@@ -34,6 +34,7 @@ pub(crate) use propagate::compatible::DEFAULT_FAN_MARGIN;
 pub use propagate::compatible::{Compatible, CompatibleError, area_and_centroid, lay_out};
 pub use propagate::paths::ThirdVertexPath;
 pub(crate) use staged::Staged;
+pub(crate) use tween::strictly_increasing;
 pub use tween::{Keyframe, Tween, timed_keyframes};
 
 use crate::tree::RootChoice;

@@ -158,17 +158,25 @@ impl Tween {
     fn certify_off_path(&mut self, options: &CurveMorphOptions) {
         use rayon::prelude::*;
         let tol = key_tolerance(&self.staged, options);
-        let counts: Vec<usize> = self
+        let counts: Vec<(usize, usize)> = self
             .staged
             .legs
             .par_iter_mut()
             .map(|leg| leg.certify_off_path(tol))
             .collect();
-        for (j, (&count, leg)) in counts.iter().zip(&self.staged.legs).enumerate() {
+        for (j, (&(count, across), leg)) in counts.iter().zip(&self.staged.legs).enumerate() {
             if count > 0 {
+                let across = match across {
+                    0 => String::new(),
+                    n => format!(
+                        " ({n} by a bridge across the key{} beside {})",
+                        if n == 1 { "" } else { "s" },
+                        if n == 1 { "it" } else { "them" }
+                    ),
+                };
                 self.report.fallbacks.push(Fallback::new(
                     &format!(
-                        "certified {count} segment{} of leg {} by keys off its path",
+                        "certified {count} segment{} of leg {} by keys off its path{across}",
                         if count == 1 { "" } else { "s" },
                         j + 1
                     ),
@@ -180,7 +188,7 @@ impl Tween {
                 ));
             }
         }
-        if counts.iter().any(|&c| c > 0) {
+        if counts.iter().any(|&(c, _)| c > 0) {
             (self.pace, self.offsets, self.total) = pace_tables(&self.staged.legs);
         }
     }
@@ -652,25 +660,27 @@ impl Tween {
         if let Some(last) = side.last_mut() {
             last.0 = 1.0;
         }
-        if !self.reversed {
-            return side
-                .into_iter()
+        let mut keys: Vec<Keyframe> = if self.reversed {
+            let (n, k) = (self.n, self.shift);
+            side.into_iter()
+                .rev()
+                .map(|(f, p, before, _)| Keyframe {
+                    t: 1.0 - f,
+                    points: (0..n).map(|i| p[(i + k) % n]).collect(),
+                    triangles: shift_triangles(n, before, k),
+                })
+                .collect()
+        } else {
+            side.into_iter()
                 .map(|(t, p, _, after)| Keyframe {
                     t,
                     points: p.to_vec(),
                     triangles: after.to_vec(),
                 })
-                .collect();
-        }
-        let (n, k) = (self.n, self.shift);
-        side.into_iter()
-            .rev()
-            .map(|(f, p, before, _)| Keyframe {
-                t: 1.0 - f,
-                points: (0..n).map(|i| p[(i + k) % n]).collect(),
-                triangles: shift_triangles(n, before, k),
-            })
-            .collect()
+                .collect()
+        };
+        strictly_increasing(&mut keys);
+        keys
     }
 
     /// The largest vertex move per unit of pace over the first frame step
@@ -1247,7 +1257,7 @@ pub fn timed_keyframes(keys: &[Keyframe], times: &[f64], every_frame: bool) -> V
         }
     }
     let count = out.len();
-    (0..count)
+    let mut written = (0..count)
         .map(|m| {
             let (x, u, exact) = out[m];
             // The segment the written segment after this key lies on (for
@@ -1270,7 +1280,29 @@ pub fn timed_keyframes(keys: &[Keyframe], times: &[f64], every_frame: bool) -> V
                 triangles: keys[seg.min(keys.len() - 1)].triangles.clone(),
             }
         })
-        .collect()
+        .collect::<Vec<_>>();
+    // Keys crossed less than the resolution of a frame position apart.
+    strictly_increasing(&mut written);
+    written
+}
+
+/// Makes the keys' times strictly increasing between the first key's and
+/// the last's by the fewest units in the last place: where a stretch of
+/// keys moves less than the resolution of t (its travel, over the whole
+/// travel, below a unit in the last place of t), their times round to one
+/// value, and each is moved to the next double above the previous key's
+/// (then below the following key's, towards the last). Every key is kept:
+/// the segments between them are what is certified.
+pub(crate) fn strictly_increasing(keys: &mut [Keyframe]) {
+    use crate::certify::exact::{next_down, next_up};
+    for k in 1..keys.len().saturating_sub(1) {
+        let floor = next_up(keys[k - 1].t);
+        keys[k].t = keys[k].t.max(floor);
+    }
+    for k in (0..keys.len().saturating_sub(1)).rev() {
+        let ceiling = next_down(keys[k + 1].t);
+        keys[k].t = keys[k].t.min(ceiling);
+    }
 }
 
 /// How many keys past an uncertified segment [`merge_keys`] looks for a
@@ -1372,4 +1404,34 @@ fn merge_keys(leg: &mut Leg, tol: f64) {
     leg.samples = kept.iter().map(|&k| leg.samples[k]).collect();
     leg.certified = certified;
     leg.repaired.clear();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Keys whose times round to one value are spread over the next
+    /// doubles, each by the fewest units in the last place, the ends and
+    /// every key kept; times already increasing stay.
+    #[test]
+    fn equal_key_times_are_spread_by_units_in_the_last_place() {
+        let key = |t: f64| Keyframe {
+            t,
+            points: vec![Point::new(t, 0.0)],
+            triangles: Vec::new(),
+        };
+        let near = 1.0 - 7.5e-11;
+        let times = [0.0, 0.5, near, near, near, 1.0, 1.0, 1.0];
+        let mut keys: Vec<Keyframe> = times.iter().map(|&t| key(t)).collect();
+        strictly_increasing(&mut keys);
+        let t: Vec<f64> = keys.iter().map(|k| k.t).collect();
+        assert!(t.windows(2).all(|w| w[0] < w[1]), "{t:?}");
+        assert_eq!((t[0], t[1], t[2]), (0.0, 0.5, near));
+        assert_eq!(t[3], f64::from_bits(near.to_bits() + 1));
+        assert_eq!(t[4], f64::from_bits(near.to_bits() + 2));
+        assert_eq!(t[7], 1.0);
+        assert_eq!(t[6], f64::from_bits(1.0f64.to_bits() - 1));
+        assert_eq!(t[5], f64::from_bits(1.0f64.to_bits() - 2));
+        assert_eq!(keys.len(), times.len());
+    }
 }

@@ -427,9 +427,9 @@ impl Sequence {
                     Some(last) if k == 0 => {
                         last.triangles = key.triangles;
                     }
-                    Some(last) if key.t <= last.t => {
-                        // A segment too short to move the time: keep the
-                        // later shape.
+                    Some(last) if key.t <= last.t && key.points == last.points => {
+                        // A segment that does not move: keep the later
+                        // key's triangulation.
                         *last = Keyframe { t: last.t, ..key };
                     }
                     _ => out.push(key),
@@ -439,6 +439,8 @@ impl Sequence {
         if let Some(last) = out.last_mut() {
             last.t = 1.0;
         }
+        // Keys that move less than the resolution of t apart.
+        crate::morph::strictly_increasing(&mut out);
         out
     }
 

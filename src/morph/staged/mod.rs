@@ -320,10 +320,10 @@ impl Leg {
     /// The new keys take parameters evenly spaced inside the segment's
     /// (non-decreasing).
     /// Returns how many segments were certified so.
-    pub(crate) fn certify_off_path(&mut self, tol: f64) -> usize {
+    pub(crate) fn certify_off_path(&mut self, tol: f64) -> (usize, usize) {
         use rayon::prelude::*;
         if self.certified.iter().all(|&c| c) {
-            return 0;
+            return (0, 0);
         }
         let (tris, margin) = (self.plan.triangles(), self.plan.fan_margin());
         // Per segment certified so: its new keys and their parameters.
@@ -356,7 +356,8 @@ impl Leg {
             })
             .collect();
         if found.is_empty() {
-            return 0;
+            let across = self.certify_across_keys(tol);
+            return (across, across);
         }
         let count = found.len();
         let segments = self.certified.len();
@@ -389,6 +390,77 @@ impl Leg {
         self.certified = certified;
         self.repaired = repaired;
         self.set_travel();
+        let across = self.certify_across_keys(tol);
+        (count + across, across)
+    }
+
+    /// Certifies each segment that keys off the path leave uncertified, where
+    /// it can, by a bridge across it and up to [`MAX_KEYS_ACROSS`] keys
+    /// beside it (nearest spans first, the earlier side first): where the
+    /// failure sits at a key (a triangle nearly flat there, which the
+    /// straight motion from it turns over at once), a bridge that does not
+    /// pass through that key may hold. The keys skipped must lie within
+    /// `tol` of the wider chord, and so must the bridge's. Returns how many
+    /// segments were certified so.
+    fn certify_across_keys(&mut self, tol: f64) -> usize {
+        if self.certified.iter().all(|&c| c) {
+            return 0;
+        }
+        let (tris, margin) = (self.plan.triangles(), self.plan.fan_margin());
+        self.repaired.resize(self.certified.len(), None);
+        let mut count = 0;
+        let mut k = 0;
+        while k < self.certified.len() {
+            if self.certified[k] {
+                k += 1;
+                continue;
+            }
+            let keys = &self.keys;
+            let spans = (1..=MAX_KEYS_ACROSS).flat_map(|wide| {
+                (0..=wide).rev().filter_map(move |before| {
+                    let lo = k.checked_sub(before)?;
+                    let hi = k + 1 + (wide - before);
+                    (hi < keys.len()).then_some((lo, hi))
+                })
+            });
+            let repaired = &self.repaired;
+            let found = spans
+                .filter(|&(lo, hi)| {
+                    (lo..hi).all(|j| repaired[j].is_none())
+                        && keys[lo + 1..hi]
+                            .iter()
+                            .all(|p| off_path::near_chord(&keys[lo], &keys[hi], tol, p))
+                })
+                .find_map(|(lo, hi)| {
+                    let inner = off_path::off_path_keys(&keys[lo], &keys[hi], tris, margin, tol)?;
+                    Some((lo, hi, inner))
+                });
+            let Some((lo, hi, inner)) = found else {
+                k += 1;
+                continue;
+            };
+            let (s0, s1) = (self.samples[lo], self.samples[hi]);
+            let parts = inner.len() as f64 + 1.0;
+            let mut last = s0;
+            let samples: Vec<f64> = (1..=inner.len())
+                .map(|i| {
+                    last = (s0 + (s1 - s0) * (i as f64 / parts)).clamp(last, s1);
+                    last
+                })
+                .collect();
+            let added = inner.len();
+            self.samples.splice(lo + 1..hi, samples);
+            self.keys.splice(lo + 1..hi, inner);
+            self.certified
+                .splice(lo..hi, std::iter::repeat_n(true, added + 1));
+            self.repaired
+                .splice(lo..hi, std::iter::repeat_n(None, added + 1));
+            count += 1;
+            k = lo + added + 1;
+        }
+        if count > 0 {
+            self.set_travel();
+        }
         count
     }
 
@@ -704,6 +776,10 @@ pub(crate) const KEY_AREA_TOLERANCE: f64 = 0.01;
 /// work and the keys where a path cannot be followed closely (a segment
 /// left unsplit is still checked at every frame).
 const MAX_KEY_SPLITS: usize = 64;
+
+/// Most keys a bridge across an uncertified segment may skip beside it
+/// ([`Leg::certify_across_keys`]).
+const MAX_KEYS_ACROSS: usize = 3;
 
 /// Where [`Leg::split`] splits a segment, in order of preference: its
 /// midpoint, then other points where the path's midpoint fails the exact

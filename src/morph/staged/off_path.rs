@@ -118,16 +118,7 @@ impl Gap<'_> {
     /// Whether every vertex of `p` lies within the tolerance of its own
     /// straight segment from `a` to `b`.
     fn near(&self, p: &[Point]) -> bool {
-        p.iter().zip(self.a.iter().zip(self.b)).all(|(x, (a, b))| {
-            let d = *b - *a;
-            let len2 = d.length_squared();
-            let w = if len2 > 0.0 {
-                ((*x - *a).dot(d) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            (*x - a.lerp(*b, w)).length() <= self.tol
-        })
+        near_chord(self.a, self.b, self.tol, p)
     }
 
     /// Route 1: the interior keys along the straight path of a compatible
@@ -253,6 +244,21 @@ impl Gap<'_> {
         }
         None
     }
+}
+
+/// Whether every vertex of `p` lies within `tol` of its own straight
+/// segment from `a` to `b`.
+pub(crate) fn near_chord(a: &[Point], b: &[Point], tol: f64, p: &[Point]) -> bool {
+    p.iter().zip(a.iter().zip(b)).all(|(x, (a, b))| {
+        let d = *b - *a;
+        let len2 = d.length_squared();
+        let w = if len2 > 0.0 {
+            ((*x - *a).dot(d) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (*x - a.lerp(*b, w)).length() <= tol
+    })
 }
 
 /// The bridge's paths, in order: the straightest first, then the two

@@ -96,7 +96,7 @@ impl Immersion {
     /// As [`Immersion::spine`].
     pub fn root_triangle(&self, choice: RootChoice) -> Result<usize, TreeError> {
         let tree = DualTree::new(self.points.len(), &self.triangles)?;
-        Ok(root_triangle(&tree, &self.points, choice))
+        Ok(root_triangle(&tree, &self.points, choice.into()))
     }
 }
 

@@ -264,15 +264,34 @@ fn argmax(v: &[usize]) -> usize {
     best
 }
 
+/// Where a plan's propagation starts: as a [`RootChoice`] says, or at a
+/// given triangle (a bridge of the staged route roots its plan at the
+/// feature it carries, so that the layout's rounding there is relative to
+/// the feature's size, not to the distance from the disk's centre).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Root {
+    /// As the choice says.
+    Choice(RootChoice),
+    /// This triangle (an index into the triangulation).
+    Triangle(usize),
+}
+
+impl From<RootChoice> for Root {
+    fn from(choice: RootChoice) -> Root {
+        Root::Choice(choice)
+    }
+}
+
 /// The root triangle for propagation.
 ///
 /// [`RootChoice::Disk`]: place the vertices on a circle at angles
 /// proportional to the curve's cumulative edge length (the disk image of
 /// the triangulation) and take the triangle whose centroid is closest to
-/// the centre.
-pub(crate) fn root_triangle(tree: &DualTree, points: &[Point], choice: RootChoice) -> usize {
-    match choice {
-        RootChoice::Disk => {
+/// the centre. [`Root::Triangle`]: that triangle, where it is one.
+pub(crate) fn root_triangle(tree: &DualTree, points: &[Point], root: Root) -> usize {
+    match root {
+        Root::Triangle(t) if t < tree.triangles().len() => t,
+        Root::Triangle(_) | Root::Choice(RootChoice::Disk) => {
             let disk = disk_positions(points);
             let mut best = (f64::INFINITY, 0);
             for (t, tri) in tree.triangles().iter().enumerate() {

@@ -19,7 +19,7 @@ use crate::morph::propagate::paths::{
     RotateSlide, ThirdVertexPath, base_frame_angles, from_base_frame, to_base_frame,
 };
 use crate::morph::propagate::rigid::RigidGuide;
-use crate::tree::{DualTree, RootChoice, Rooted, root_triangle};
+use crate::tree::{DualTree, Root, RootChoice, Rooted, root_triangle};
 use std::f64::consts::TAU;
 
 /// Default margin ε (radians) kept below 2π in every vertex fan by the
@@ -81,7 +81,7 @@ pub struct Compatible {
     rigid: std::sync::OnceLock<Option<(RigidGuide, [Vec<Point>; 2])>>,
     /// How the root triangle was chosen (to build the plan again,
     /// [`Compatible::seed`]).
-    root_choice: RootChoice,
+    root_choice: Root,
 }
 
 /// What a plan is built from, without what it derives: about a third of
@@ -93,7 +93,7 @@ pub(crate) struct PlanSeed {
     src: Vec<Point>,
     dst: Vec<Point>,
     triangles: Vec<[u32; 3]>,
-    root_choice: RootChoice,
+    root_choice: Root,
     fan_margin: f64,
     /// The straight guide's end where it is not the target.
     guide_end: Option<Vec<Point>>,
@@ -420,7 +420,27 @@ impl Compatible {
             return Err(CompatibleError::Counts(src.len(), dst.len()));
         }
         let tree = DualTree::new(src.len(), triangles)?;
-        Compatible::on_tree(src, dst, &tree, root, fan_margin)
+        Compatible::on_tree(src, dst, &tree, root.into(), fan_margin)
+    }
+
+    /// [`Compatible::new`] with the propagation rooted at triangle `root`
+    /// of `triangles`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Compatible::new`].
+    pub(crate) fn rooted_at(
+        src: &[Point],
+        dst: &[Point],
+        triangles: &[[u32; 3]],
+        root: usize,
+        fan_margin: f64,
+    ) -> Result<Compatible, CompatibleError> {
+        if src.len() != dst.len() {
+            return Err(CompatibleError::Counts(src.len(), dst.len()));
+        }
+        let tree = DualTree::new(src.len(), triangles)?;
+        Compatible::on_tree(src, dst, &tree, Root::Triangle(root), fan_margin)
     }
 
     /// [`Compatible::new`] with the dual tree of the triangulation already
@@ -433,7 +453,7 @@ impl Compatible {
         src: &[Point],
         dst: &[Point],
         tree: &DualTree,
-        root: RootChoice,
+        root: Root,
         fan_margin: f64,
     ) -> Result<Compatible, CompatibleError> {
         if src.len() != dst.len() || src.len() != tree.vertex_count() {
@@ -1422,7 +1442,8 @@ pub(crate) mod tests {
 
     /// The guaranteed paths on random pairs of immersed disks, simple and
     /// overlapping themselves (at curl 6, 11 of the 60 cases have a side
-    /// that overlaps itself; at least a tenth must).
+    /// that overlaps itself; at least a tenth must), rooted at the disk's
+    /// centre and at another triangle.
     #[test]
     fn guaranteed_paths_give_immersions_on_random_compatible_pairs() {
         let mut rng = Rng(0x853c49e6748fea9b);
@@ -1442,14 +1463,25 @@ pub(crate) mod tests {
             if !crate::geom::polygon::is_simple(&a) || !crate::geom::polygon::is_simple(&b) {
                 self_intersecting += 1;
             }
-            for path in [
+            // A root other than the disk's, spread over the cases (the
+            // generator's draws stay as they were).
+            let drawn = (7 * case + 3) % tris.len();
+            let paths = [
                 ThirdVertexPath::Angle,
                 ThirdVertexPath::Hybrid,
                 ThirdVertexPath::Straight,
                 ThirdVertexPath::Polar,
-            ] {
-                let plan =
-                    Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
+            ];
+            for (path, root) in paths
+                .into_iter()
+                .flat_map(|p| [(p, None), (p, Some(drawn))])
+            {
+                let plan = match root {
+                    None => Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN),
+                    Some(t) => Compatible::rooted_at(&a, &b, &tris, t, DEFAULT_FAN_MARGIN),
+                }
+                .unwrap();
+                assert_eq!(plan.rooted.root, root.unwrap_or(plan.rooted.root));
                 let (a0, _) = area_and_centroid(&a, &tris);
                 let (a1, _) = area_and_centroid(&b, &tris);
                 // Every fitted path keeps the ends' range widened by

@@ -991,7 +991,10 @@ impl SideInput<'_> {
     ) -> Result<Compatible, CompatibleError> {
         let a0 = area_and_centroid(self.s, self.t_start).0;
         let a1 = area_and_centroid(self.other, self.t_other).0;
-        Ok(Compatible::on_tree(x, end, tree, self.root, self.margin)?.with_area_range(a0, a1))
+        Ok(
+            Compatible::on_tree(x, end, tree, self.root.into(), self.margin)?
+                .with_area_range(a0, a1),
+        )
     }
 }
 

@@ -127,14 +127,39 @@ impl Gap<'_> {
     /// fraction is the bridge's parameter). Planned from `a`, and only
     /// where that fails from `b` (the layout's rounding differs).
     fn bridged(&self) -> Option<Vec<Vec<Point>>> {
+        self.bridged_from(None).or_else(|| {
+            // Rooted at the failing feature, the layout's rounding there is
+            // relative to the feature's own size.
+            let failure = certify_segment(self.a, self.b, self.tris, Player::Exact)
+                .ok()?
+                .failure?;
+            let root = match failure.defect {
+                Defect::Triangle { index, .. } => index,
+                Defect::Fan { vertex } => self
+                    .tris
+                    .iter()
+                    .position(|t| t.contains(&(vertex as u32)))?,
+                Defect::Start(_) => return None,
+            };
+            self.bridged_from(Some(root))
+        })
+    }
+
+    /// [`Gap::bridged`] with plans rooted as [`RootChoice::Disk`] says, or
+    /// at triangle `root`.
+    fn bridged_from(&self, root: Option<usize>) -> Option<Vec<Vec<Point>>> {
         for back in [false, true] {
             let (from, to) = if back {
                 (self.b, self.a)
             } else {
                 (self.a, self.b)
             };
-            let Ok(plan) = Compatible::new(from, to, self.tris, RootChoice::Disk, self.fan_margin)
-            else {
+            let (tris, margin) = (self.tris, self.fan_margin);
+            let plan = match root {
+                None => Compatible::new(from, to, tris, RootChoice::Disk, margin),
+                Some(t) => Compatible::rooted_at(from, to, tris, t, margin),
+            };
+            let Ok(plan) = plan else {
                 continue;
             };
             for p in BRIDGE_PATHS {

@@ -127,27 +127,41 @@ impl Gap<'_> {
     /// fraction is the bridge's parameter). Planned from `a`, and only
     /// where that fails from `b` (the layout's rounding differs).
     fn bridged(&self) -> Option<Vec<Vec<Point>>> {
-        self.bridged_from(None).or_else(|| {
-            // Rooted at the failing feature, the layout's rounding there is
-            // relative to the feature's own size.
-            let failure = certify_segment(self.a, self.b, self.tris, Player::Exact)
-                .ok()?
-                .failure?;
-            let root = match failure.defect {
-                Defect::Triangle { index, .. } => index,
-                Defect::Fan { vertex } => self
-                    .tris
-                    .iter()
-                    .position(|t| t.contains(&(vertex as u32)))?,
-                Defect::Start(_) => return None,
-            };
-            self.bridged_from(Some(root))
-        })
+        // Rooted at the failing feature, the layout's rounding there is
+        // relative to the feature's own size.
+        let mut feature: Option<Option<usize>> = None;
+        for paths in [&BRIDGE_PATHS[..], &LAST_BRIDGE_PATHS[..]] {
+            if let Some(keys) = self.bridged_from(None, paths) {
+                return Some(keys);
+            }
+            let root = *feature.get_or_insert_with(|| self.failing_triangle());
+            if let Some(keys) = root.and_then(|t| self.bridged_from(Some(t), paths)) {
+                return Some(keys);
+            }
+        }
+        None
     }
 
-    /// [`Gap::bridged`] with plans rooted as [`RootChoice::Disk`] says, or
-    /// at triangle `root`.
-    fn bridged_from(&self, root: Option<usize>) -> Option<Vec<Vec<Point>>> {
+    /// The triangle where the straight motion from `a` to `b` first fails
+    /// (for a fan, a triangle of it).
+    fn failing_triangle(&self) -> Option<usize> {
+        let failure = certify_segment(self.a, self.b, self.tris, Player::Exact)
+            .ok()?
+            .failure?;
+        match failure.defect {
+            Defect::Triangle { index, .. } => Some(index),
+            Defect::Fan { vertex } => self.tris.iter().position(|t| t.contains(&(vertex as u32))),
+            Defect::Start(_) => None,
+        }
+    }
+
+    /// [`Gap::bridged`] along `paths`, with plans rooted as
+    /// [`RootChoice::Disk`] says, or at triangle `root`.
+    fn bridged_from(
+        &self,
+        root: Option<usize>,
+        paths: &[ThirdVertexPath],
+    ) -> Option<Vec<Vec<Point>>> {
         for back in [false, true] {
             let (from, to) = if back {
                 (self.b, self.a)
@@ -162,7 +176,7 @@ impl Gap<'_> {
             let Ok(plan) = plan else {
                 continue;
             };
-            for p in BRIDGE_PATHS {
+            for &p in paths {
                 let path = |u: f64| plan.positions(if back { 1.0 - u } else { u }, p);
                 let mut keys = Vec::new();
                 let mut budget = MAX_KEYS;
@@ -294,6 +308,12 @@ const BRIDGE_PATHS: [ThirdVertexPath; 3] = [
     ThirdVertexPath::Hybrid,
     ThirdVertexPath::Rigid,
 ];
+
+/// The bridge's paths where none of [`BRIDGE_PATHS`] holds, from either
+/// root: the two that interpolate each triangle's angles and scale
+/// without a guide, so that a feature whose straight path draws its
+/// vertices together is not pinched.
+const LAST_BRIDGE_PATHS: [ThirdVertexPath; 2] = [ThirdVertexPath::Angle, ThirdVertexPath::Polar];
 
 /// A bridge being split.
 struct Split<'a> {

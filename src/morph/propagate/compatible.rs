@@ -416,31 +416,27 @@ impl Compatible {
         root: RootChoice,
         fan_margin: f64,
     ) -> Result<Compatible, CompatibleError> {
-        if src.len() != dst.len() {
-            return Err(CompatibleError::Counts(src.len(), dst.len()));
-        }
-        let tree = DualTree::new(src.len(), triangles)?;
-        Compatible::on_tree(src, dst, &tree, root.into(), fan_margin)
+        Compatible::rooted(src, dst, triangles, root.into(), fan_margin)
     }
 
-    /// [`Compatible::new`] with the propagation rooted at triangle `root`
-    /// of `triangles`.
+    /// [`Compatible::new`] with the propagation rooted as `root` says
+    /// (a [`RootChoice`], or a given triangle of `triangles`).
     ///
     /// # Errors
     ///
     /// As [`Compatible::new`].
-    pub(crate) fn rooted_at(
+    pub(crate) fn rooted(
         src: &[Point],
         dst: &[Point],
         triangles: &[[u32; 3]],
-        root: usize,
+        root: Root,
         fan_margin: f64,
     ) -> Result<Compatible, CompatibleError> {
         if src.len() != dst.len() {
             return Err(CompatibleError::Counts(src.len(), dst.len()));
         }
         let tree = DualTree::new(src.len(), triangles)?;
-        Compatible::on_tree(src, dst, &tree, Root::Triangle(root), fan_margin)
+        Compatible::on_tree(src, dst, &tree, root, fan_margin)
     }
 
     /// [`Compatible::new`] with the dual tree of the triangulation already
@@ -1478,7 +1474,9 @@ pub(crate) mod tests {
             {
                 let plan = match root {
                     None => Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN),
-                    Some(t) => Compatible::rooted_at(&a, &b, &tris, t, DEFAULT_FAN_MARGIN),
+                    Some(t) => {
+                        Compatible::rooted(&a, &b, &tris, Root::Triangle(t), DEFAULT_FAN_MARGIN)
+                    }
                 }
                 .unwrap();
                 assert_eq!(plan.rooted.root, root.unwrap_or(plan.rooted.root));

@@ -30,7 +30,7 @@ use crate::certify::{Defect, Player, certify_segment, segment_holds};
 use crate::geom::Point;
 use crate::immersion::check_triangles;
 use crate::morph::{Compatible, ThirdVertexPath};
-use crate::tree::RootChoice;
+use crate::tree::{Root, RootChoice};
 
 /// Deepest split of a bridge, in its own parameter (a bridge spans one
 /// segment of the leg, itself down to 2⁻⁴⁴ of the leg).
@@ -169,10 +169,8 @@ impl Gap<'_> {
                 (self.a, self.b)
             };
             let (tris, margin) = (self.tris, self.fan_margin);
-            let plan = match root {
-                None => Compatible::new(from, to, tris, RootChoice::Disk, margin),
-                Some(t) => Compatible::rooted_at(from, to, tris, t, margin),
-            };
+            let root = root.map_or(Root::Choice(RootChoice::Disk), Root::Triangle);
+            let plan = Compatible::rooted(from, to, tris, root, margin);
             let Ok(plan) = plan else {
                 continue;
             };

@@ -523,14 +523,8 @@ fn smil_values(times: &[f64], values: &[String], last: f64) -> (String, String) 
             k == 0 || k + 1 == n || values[k] != values[k - 1] || values[k] != values[k + 1]
         })
         .collect();
-    let key_times: Vec<String> = kept
-        .iter()
-        .map(|&k| {
-            // The ends exactly 0 and 1, as SMIL asks.
-            let x = if k + 1 == n { 1.0 } else { times[k] / last };
-            format!("{x}")
-        })
-        .collect();
+    let kept_times: Vec<f64> = kept.iter().map(|&k| times[k]).collect();
+    let key_times = smil_key_times(&kept_times, last);
     let vals: Vec<&str> = kept.iter().map(|&k| values[k].as_str()).collect();
     (key_times.join(";"), vals.join(";"))
 }
@@ -685,18 +679,32 @@ pub fn write_animated_svg(
     write_atomic(path, svg.as_bytes(), opts.force)
 }
 
-/// SMIL `keyTimes` for keys at frame times `times` of an animation whose
-/// last frame is `last`: each time over `last`, the last one exactly 1 (the
-/// ends exactly 0 and 1, as SMIL asks).
+/// SMIL `keyTimes` for keys at frame times `times` (strictly increasing,
+/// the first 0) of an animation whose last frame is `last`: each time over
+/// `last`, the last one exactly 1 (the ends exactly 0 and 1, as SMIL
+/// asks), strictly increasing. Keys a few units in the last place apart
+/// in frame position can share a quotient; each is then moved to the next
+/// double past the previous one (then below the following one, towards
+/// 1), so that every key keeps its own time.
 fn smil_key_times(times: &[f64], last: f64) -> Vec<String> {
-    times
+    let n = times.len();
+    let mut x: Vec<f64> = times
         .iter()
         .enumerate()
-        .map(|(i, &t)| {
-            let x = if i + 1 == times.len() { 1.0 } else { t / last };
-            format!("{x}")
-        })
-        .collect()
+        .map(|(i, &t)| if i + 1 == n { 1.0 } else { t / last })
+        .collect();
+    // On [0, 1] the next double up (down) is the next (previous) bit pattern.
+    for i in 1..n.saturating_sub(1) {
+        if x[i] <= x[i - 1] {
+            x[i] = f64::from_bits(x[i - 1].to_bits() + 1);
+        }
+    }
+    for i in (1..n.saturating_sub(1)).rev() {
+        if x[i] >= x[i + 1] {
+            x[i] = f64::from_bits(x[i + 1].to_bits() - 1);
+        }
+    }
+    x.iter().map(|x| format!("{x}")).collect()
 }
 
 #[cfg(test)]
@@ -711,5 +719,38 @@ mod tests {
             s.push(' ');
         }
         assert_eq!(s, "1 2.5 0 1.23 ");
+    }
+
+    /// Keys one unit in the last place apart in frame position keep
+    /// strictly increasing key times after the division by the last frame
+    /// (the quotients of several of them round to one double), the ends
+    /// exactly 0 and 1.
+    #[test]
+    fn key_times_strictly_increase_where_quotients_round_together() {
+        // Frame positions near 63.9 are 2⁻⁴⁷ apart; over 100, their
+        // quotients near 0.639 are 2⁻⁵³ apart, and 2⁻⁴⁷ / 100 is less.
+        let last = 100.0;
+        let mut times = vec![0.0, 30.0];
+        let mut t = 63.9f64;
+        for _ in 0..40 {
+            times.push(t);
+            t = f64::from_bits(t.to_bits() + 1);
+        }
+        times.push(last);
+        let naive: Vec<f64> = times.iter().map(|t| t / last).collect();
+        assert!(
+            naive[2..times.len() - 1].windows(2).any(|w| w[0] >= w[1]),
+            "the case must have quotients that round together"
+        );
+        let got: Vec<f64> = smil_key_times(&times, last)
+            .iter()
+            .map(|s| s.parse().unwrap())
+            .collect();
+        assert_eq!(got.len(), times.len());
+        assert_eq!((got[0], got[times.len() - 1]), (0.0, 1.0));
+        assert!(got.windows(2).all(|w| w[0] < w[1]), "{got:?}");
+        for (g, n) in got.iter().zip(&naive).take(times.len() - 1) {
+            assert!((g - n).abs() <= 64.0 * f64::EPSILON, "{g} against {n}");
+        }
     }
 }

@@ -340,18 +340,8 @@ impl Leg {
                 // (some equal where the segment spans fewer doubles than
                 // it gets keys: frames are timed by the keys' moves, and
                 // the parameter only places the path's recovery).
-                let (s0, s1) = (self.samples[k], self.samples[k + 1]);
-                let count = inner.len() as f64 + 1.0;
-                let mut last = s0;
-                let keyed = inner
-                    .into_iter()
-                    .enumerate()
-                    .map(|(i, p)| {
-                        let even = s0 + (s1 - s0) * ((i + 1) as f64 / count);
-                        last = even.clamp(last, s1);
-                        (last, p)
-                    })
-                    .collect();
+                let params = even_params(self.samples[k], self.samples[k + 1], inner.len());
+                let keyed = params.into_iter().zip(inner).collect();
                 Some((k, keyed))
             })
             .collect();
@@ -439,15 +429,7 @@ impl Leg {
                 k += 1;
                 continue;
             };
-            let (s0, s1) = (self.samples[lo], self.samples[hi]);
-            let parts = inner.len() as f64 + 1.0;
-            let mut last = s0;
-            let samples: Vec<f64> = (1..=inner.len())
-                .map(|i| {
-                    last = (s0 + (s1 - s0) * (i as f64 / parts)).clamp(last, s1);
-                    last
-                })
-                .collect();
+            let samples = even_params(self.samples[lo], self.samples[hi], inner.len());
             let added = inner.len();
             self.samples.splice(lo + 1..hi, samples);
             self.keys.splice(lo + 1..hi, inner);
@@ -776,6 +758,20 @@ pub(crate) const KEY_AREA_TOLERANCE: f64 = 0.01;
 /// work and the keys where a path cannot be followed closely (a segment
 /// left unsplit is still checked at every frame).
 const MAX_KEY_SPLITS: usize = 64;
+
+/// `count` parameters spaced evenly strictly inside (`s0`, `s1`), in
+/// order and never decreasing (some equal where the span holds fewer
+/// doubles than that): those of keys off the path.
+fn even_params(s0: f64, s1: f64, count: usize) -> Vec<f64> {
+    let parts = count as f64 + 1.0;
+    let mut last = s0;
+    (1..=count)
+        .map(|i| {
+            last = (s0 + (s1 - s0) * (i as f64 / parts)).clamp(last, s1);
+            last
+        })
+        .collect()
+}
 
 /// Most keys a bridge across an uncertified segment may skip beside it
 /// ([`Leg::certify_across_keys`]).

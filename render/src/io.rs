@@ -132,8 +132,12 @@ fn check_folder_writable(path: &Path, shown: &Path) -> Result<(), RenderError> {
         }
         Err(e) => return Err(RenderError::io(shown, e)),
     }
-    temp_builder()
-        .tempfile_in(folder)
+    // Created and removed while the registry of partial outputs is held,
+    // so an interrupt handler never exits between the two and leaves it.
+    let pending = pending();
+    pending
+        .refuse_if_interrupted()
+        .and_then(|()| temp_builder().tempfile_in(folder))
         .map(drop)
         .map_err(|e| RenderError::io(shown, os_error(e)))
 }

@@ -34,7 +34,7 @@ use std::pin::Pin;
 use std::sync::atomic::{AtomicBool, AtomicU8, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::task::{Context, Poll};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 use tokio::io::AsyncWriteExt;
 use tokio::net::{TcpListener, TcpStream};
 use tokio::sync::{Notify, Semaphore, watch};
@@ -160,9 +160,20 @@ const IDLE: u8 = 0;
 const WAITING: u8 = 1;
 const WORKING: u8 = 2;
 
+/// How long a new connection has to send its request before it may be
+/// closed to make room for another: on loopback a request follows its
+/// connection within milliseconds.
+const FRESH: Duration = Duration::from_millis(200);
+
+/// Most connections accepted and waiting for a slot at once (while every
+/// connection that could be closed is younger than [`FRESH`]); beyond
+/// them, the oldest is closed at once.
+const MAX_ENTERING: usize = 64;
+
 /// One open connection.
-#[derive(Default)]
 struct Conn {
+    /// When it was admitted.
+    since: Instant,
     phase: AtomicU8,
     close: Notify,
     /// Closed at once (to make room), not after its request (the drain).
@@ -213,10 +224,37 @@ pub(super) struct Server {
     /// Refusals being written at once (beyond them, connections are
     /// closed without an answer).
     refusals: Arc<Semaphore>,
+    /// Accepted connections waiting for a slot.
+    entering: Arc<Semaphore>,
+    /// Set when the server stops accepting.
+    stopping: AtomicBool,
+}
+
+/// Whether a connection may be registered now.
+enum Entry {
+    Admitted(u64, Arc<Conn>),
+    /// Every connection is working on a request.
+    Full,
+    /// The server has stopped accepting (the connection waited).
+    Stopped,
+    /// Every connection that could be closed is new: ask again after this
+    /// long, or when a connection ends.
+    Wait(Duration),
 }
 
 /// Most HTTP 503 refusals written at once when every connection is busy.
 const MAX_REFUSALS: usize = 32;
+
+impl Conn {
+    fn new() -> Conn {
+        Conn {
+            since: Instant::now(),
+            phase: AtomicU8::new(IDLE),
+            close: Notify::new(),
+            kill: AtomicBool::new(false),
+        }
+    }
+}
 
 impl Server {
     pub(super) fn new(limits: ConnLimits) -> Arc<Server> {
@@ -226,6 +264,8 @@ impl Server {
             live: AtomicUsize::new(0),
             ended: Notify::new(),
             refusals: Arc::new(Semaphore::new(MAX_REFUSALS)),
+            entering: Arc::new(Semaphore::new(MAX_ENTERING)),
+            stopping: AtomicBool::new(false),
         })
     }
 
@@ -278,7 +318,9 @@ impl Server {
         drop(listener);
         // Connections without a request close now (a browser keeps spare
         // ones open); the others finish their request first.
-        for conn in self.registry().open.values() {
+        let reg = self.registry();
+        self.stopping.store(true, Ordering::SeqCst);
+        for conn in reg.open.values() {
             if conn.phase.load(Ordering::SeqCst) == IDLE {
                 conn.kill.store(true, Ordering::SeqCst);
             }
@@ -302,53 +344,103 @@ impl Server {
         }
     }
 
-    /// Registers a new connection, closing another to make room when all
-    /// are taken, and serves it; refuses it when none can be closed.
+    /// Registers a new connection when there is room, or when the oldest
+    /// connection not working on a request (idle, or waiting for a job
+    /// slot or its body) can be closed to make room. Age, not the phase,
+    /// decides, so a new connection that has not yet sent its request is
+    /// the last to go; and none is closed before it has had [`FRESH`] to
+    /// send it, unless `force`.
+    fn enter(&self, force: bool) -> Entry {
+        let mut reg = self.registry();
+        // Under the registry's lock, which the shutdown takes to close the
+        // connections without a request, so none is admitted past it.
+        if self.stopping.load(Ordering::SeqCst) {
+            return Entry::Stopped;
+        }
+        if reg.open.len() >= self.limits.max_connections {
+            let victim = reg
+                .open
+                .iter()
+                .find(|(_, c)| c.phase.load(Ordering::SeqCst) != WORKING)
+                .map(|(&id, c)| (id, c.since.elapsed()));
+            let Some((victim, age)) = victim else {
+                return Entry::Full;
+            };
+            if age < FRESH && !force {
+                return Entry::Wait(FRESH - age);
+            }
+            // Closed at once: it has no request (or one still waiting),
+            // and hyper would keep a connection that has not finished its
+            // first request open until it does.
+            if let Some(c) = reg.open.remove(&victim) {
+                c.kill.store(true, Ordering::SeqCst);
+                c.close.notify_one();
+            }
+        }
+        let id = reg.next;
+        reg.next += 1;
+        let conn = Arc::new(Conn::new());
+        reg.open.insert(id, Arc::clone(&conn));
+        self.live.fetch_add(1, Ordering::SeqCst);
+        Entry::Admitted(id, conn)
+    }
+
+    /// Registers a new connection and serves it ([`enter`](Self::enter)),
+    /// or refuses it when every connection is working. Where every
+    /// connection that could be closed is new, it waits for a slot in a
+    /// task of its own, so the accept loop goes on (a stalled loop would
+    /// fill the listen queue, and new connections would wait seconds for
+    /// the kernel to retry them).
     fn admit<S>(self: &Arc<Self>, stream: TcpStream, app: S)
     where
         S: Service<Request, Response = Response, Error = Infallible> + Clone + Send + 'static,
         S::Future: Send + 'static,
     {
         let _ = stream.set_nodelay(true);
-        let (id, conn) = {
-            let mut reg = self.registry();
-            if reg.open.len() >= self.limits.max_connections {
-                // The oldest connection not working on a request: idle, or
-                // waiting for a job slot or its body. Age, not the phase,
-                // decides, so a new connection that has not yet sent its
-                // request is the last to go.
-                let victim = reg
-                    .open
-                    .iter()
-                    .find(|(_, c)| c.phase.load(Ordering::SeqCst) != WORKING)
-                    .map(|(&id, _)| id);
-                let Some(victim) = victim else {
-                    drop(reg);
-                    self.refuse(stream);
+        let entry = match self.enter(false) {
+            Entry::Wait(wait) => match Arc::clone(&self.entering).try_acquire_owned() {
+                Ok(permit) => {
+                    let server = Arc::clone(self);
+                    tokio::spawn(async move {
+                        let mut wait = wait;
+                        loop {
+                            let ended = server.ended.notified();
+                            let _ = tokio::time::timeout(wait, ended).await;
+                            match server.enter(false) {
+                                Entry::Wait(w) => wait = w,
+                                entry => {
+                                    drop(permit);
+                                    server.run(entry, stream, app).await;
+                                    return;
+                                }
+                            }
+                        }
+                    });
                     return;
-                };
-                // Closed at once: it has no request (or one still waiting),
-                // and hyper would keep a connection that has not finished
-                // its first request open until it does.
-                if let Some(c) = reg.open.remove(&victim) {
-                    c.kill.store(true, Ordering::SeqCst);
-                    c.close.notify_one();
                 }
-            }
-            let id = reg.next;
-            reg.next += 1;
-            let conn = Arc::new(Conn::default());
-            reg.open.insert(id, Arc::clone(&conn));
-            (id, conn)
+                Err(_) => self.enter(true),
+            },
+            entry => entry,
         };
-        self.live.fetch_add(1, Ordering::SeqCst);
         let server = Arc::clone(self);
-        tokio::spawn(async move {
-            server.connection(stream, app, &conn).await;
-            server.registry().open.remove(&id);
-            server.live.fetch_sub(1, Ordering::SeqCst);
-            server.ended.notify_waiters();
-        });
+        tokio::spawn(async move { server.run(entry, stream, app).await });
+    }
+
+    /// Serves an admitted connection until it ends, or refuses it.
+    async fn run<S>(self: Arc<Self>, entry: Entry, stream: TcpStream, app: S)
+    where
+        S: Service<Request, Response = Response, Error = Infallible> + Clone + Send + 'static,
+        S::Future: Send + 'static,
+    {
+        let (id, conn) = match entry {
+            Entry::Admitted(id, conn) => (id, conn),
+            Entry::Full => return self.refuse(stream),
+            Entry::Stopped | Entry::Wait(_) => return,
+        };
+        self.connection(stream, app, &conn).await;
+        self.registry().open.remove(&id);
+        self.live.fetch_sub(1, Ordering::SeqCst);
+        self.ended.notify_waiters();
     }
 
     /// Answers HTTP 503 without reading the request, and closes.

@@ -32,12 +32,32 @@ use crate::output;
 use std::sync::Arc;
 use std::time::Duration;
 
+/// Connections the kernel queues for the accept loop. A burst beyond the
+/// queue is not refused but retried by the client's kernel a second later,
+/// so the queue is longer than a burst of hostile connections, whose
+/// surplus the server then closes at once.
+const LISTEN_QUEUE: i32 = 1024;
+
+/// A non-blocking listener on loopback (the port is taken now, so a taken
+/// port is a plain error), with a queue of [`LISTEN_QUEUE`].
+fn listen(port: u16) -> std::io::Result<std::net::TcpListener> {
+    use socket2::{Domain, Socket, Type};
+    let socket = Socket::new(Domain::IPV4, Type::STREAM, None)?;
+    // As the standard library does: a restarted server may take its port
+    // back while old connections linger in TIME_WAIT.
+    #[cfg(unix)]
+    socket.set_reuse_address(true)?;
+    socket.bind(&std::net::SocketAddr::from(([127, 0, 0, 1], port)).into())?;
+    socket.listen(LISTEN_QUEUE)?;
+    socket.set_nonblocking(true)?;
+    Ok(socket.into())
+}
+
 pub(crate) fn run(args: &ServeArgs) -> anyhow::Result<Outcome> {
     let limits = &args.limits;
     // Bound before the runtime starts, so a taken port is a plain error.
-    let listener = std::net::TcpListener::bind(("127.0.0.1", args.port))
+    let listener = listen(args.port)
         .map_err(|e| anyhow::anyhow!("cannot listen on 127.0.0.1:{}: {e}", args.port))?;
-    listener.set_nonblocking(true)?;
     let port = listener.local_addr()?.port();
     let max_body = limits.max_body_bytes as usize;
     // The outer time limit of any request: its body and its job, with a

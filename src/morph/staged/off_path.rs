@@ -36,8 +36,9 @@ use crate::tree::{Root, RootChoice};
 /// segment of the leg, itself down to 2⁻⁴⁴ of the leg).
 const MAX_DEPTH: u32 = 24;
 
-/// Most keys a bridge may add to one segment.
-const MAX_KEYS: usize = 4096;
+/// Most keys a bridge may add to one segment (a needle 4·10⁻⁵ wide that
+/// moves 27 units, stress pair 1552, keeps 5,225).
+const MAX_KEYS: usize = 1 << 14;
 
 /// Most clusters tried around one failure, smallest first.
 const MAX_CLUSTERS: usize = 3;

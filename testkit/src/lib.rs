@@ -2,13 +2,15 @@
 //! so that each exists once: the seeded random generator ([`Rng`]), the
 //! curve generators ([`shapes`], and the stress families in [`stress`]),
 //! the stress driver and shrinker ([`stress`]), the pair lists of
-//! `curves/` ([`pairs`]), the pacing measures ([`pacing`]) and a running
-//! `immerse serve` with a loopback client ([`serve`]).
+//! `curves/` ([`pairs`]), the pacing measures ([`pacing`]), a running
+//! `immerse serve` with a loopback client ([`serve`]) and the independent
+//! exact checker of a straight-line segment ([`exact_check`]).
 //!
 //! A development crate: never published, never a dependency of a library.
 //! Without its default `immerse` feature it holds only what needs no more
-//! than `immerse-base` ([`Rng`], [`shapes`], [`pairs`]).
+//! than `immerse-base` ([`Rng`], [`shapes`], [`pairs`], [`exact_check`]).
 
+pub mod exact_check;
 pub mod pairs;
 pub mod rng;
 pub mod shapes;

@@ -36,9 +36,11 @@ use crate::tree::{Root, RootChoice};
 /// segment of the leg, itself down to 2⁻⁴⁴ of the leg).
 const MAX_DEPTH: u32 = 24;
 
-/// Most keys a bridge may add to one segment (a needle 4·10⁻⁵ wide that
-/// moves 27 units, stress pair 1552, keeps 5,225).
-const MAX_KEYS: usize = 1 << 14;
+/// Most keys a bridge may add to one segment: both routes are tried with
+/// the first bound, then again with the second (a needle 4·10⁻⁵ wide that
+/// moves 27 units, stress pair 1552, keeps 5,225), so that a segment a
+/// smaller bridge certifies keeps the fewer keys it needs.
+const MAX_KEYS: [usize; 2] = [1 << 12, 1 << 14];
 
 /// Most clusters tried around one failure, smallest first.
 const MAX_CLUSTERS: usize = 3;
@@ -66,7 +68,9 @@ pub(crate) fn off_path_keys(
         fan_margin,
         tol,
     };
-    let inner = gap.bridged().or_else(|| gap.enlarged())?;
+    let inner = MAX_KEYS
+        .into_iter()
+        .find_map(|most| gap.bridged(most).or_else(|| gap.enlarged(most)))?;
     Some(gap.fewest(inner))
 }
 
@@ -127,16 +131,16 @@ impl Gap<'_> {
     /// certified, each within the tolerance of the chord (the chord's
     /// fraction is the bridge's parameter). Planned from `a`, and only
     /// where that fails from `b` (the layout's rounding differs).
-    fn bridged(&self) -> Option<Vec<Vec<Point>>> {
+    fn bridged(&self, most: usize) -> Option<Vec<Vec<Point>>> {
         // Rooted at the failing feature, the layout's rounding there is
         // relative to the feature's own size.
         let mut feature: Option<Option<usize>> = None;
         for paths in [&BRIDGE_PATHS[..], &LAST_BRIDGE_PATHS[..]] {
-            if let Some(keys) = self.bridged_from(None, paths) {
+            if let Some(keys) = self.bridged_from(None, paths, most) {
                 return Some(keys);
             }
             let root = *feature.get_or_insert_with(|| self.failing_triangle());
-            if let Some(keys) = root.and_then(|t| self.bridged_from(Some(t), paths)) {
+            if let Some(keys) = root.and_then(|t| self.bridged_from(Some(t), paths, most)) {
                 return Some(keys);
             }
         }
@@ -157,11 +161,13 @@ impl Gap<'_> {
     }
 
     /// [`Gap::bridged`] along `paths`, with plans rooted as
-    /// [`RootChoice::Disk`] says, or at triangle `root`.
+    /// [`RootChoice::Disk`] says, or at triangle `root`, adding at most
+    /// `most` keys.
     fn bridged_from(
         &self,
         root: Option<usize>,
         paths: &[ThirdVertexPath],
+        most: usize,
     ) -> Option<Vec<Vec<Point>>> {
         for back in [false, true] {
             let (from, to) = if back {
@@ -178,7 +184,7 @@ impl Gap<'_> {
             for &p in paths {
                 let path = |u: f64| plan.positions(if back { 1.0 - u } else { u }, p);
                 let mut keys = Vec::new();
-                let mut budget = MAX_KEYS;
+                let mut budget = most;
                 let split = Split {
                     path: &path,
                     gap: self,
@@ -201,7 +207,7 @@ impl Gap<'_> {
     /// at both keys, and the bridge between the enlarged keys; the
     /// interior keys are the enlarged `a`, the bridge's keys and the
     /// enlarged `b`.
-    fn enlarged(&self) -> Option<Vec<Vec<Point>>> {
+    fn enlarged(&self, most: usize) -> Option<Vec<Vec<Point>>> {
         let (a, b) = (self.a, self.b);
         let failure = certify_segment(a, b, self.tris, Player::Exact)
             .ok()?
@@ -219,11 +225,11 @@ impl Gap<'_> {
             .fold(0.0f64, f64::max);
         corners
             .iter()
-            .find_map(|&centre| self.enlarged_about(centre, size))
+            .find_map(|&centre| self.enlarged_about(centre, size, most))
     }
 
     /// Route 2 about the corner `centre` of a failing feature of `size`.
-    fn enlarged_about(&self, centre: usize, size: f64) -> Option<Vec<Vec<Point>>> {
+    fn enlarged_about(&self, centre: usize, size: f64, most: usize) -> Option<Vec<Vec<Point>>> {
         let (a, b, tris) = (self.a, self.b, self.tris);
         // Every vertex by its larger distance from the centre at the two keys.
         let mut by_distance: Vec<(f64, usize)> = (0..a.len())
@@ -246,11 +252,11 @@ impl Gap<'_> {
             let cluster: Vec<usize> = by_distance[..=j].iter().map(|&(_, i)| i).collect();
             // The scale: a power of two keeping the cluster well inside its
             // gap and its moves within a tenth of the tolerance.
-            let most = (gap / (4.0 * radius)).min(0.1 * self.tol / radius);
-            if most.is_nan() || most < 2.0 {
+            let largest = (gap / (4.0 * radius)).min(0.1 * self.tol / radius);
+            if largest.is_nan() || largest < 2.0 {
                 continue;
             }
-            let mut exponent = most.log2().floor() as i32;
+            let mut exponent = largest.log2().floor() as i32;
             while exponent >= 1 {
                 let scale = 2f64.powi(exponent);
                 exponent -= 2;
@@ -273,7 +279,7 @@ impl Gap<'_> {
                     tol: self.tol - scale * radius,
                     ..*self
                 };
-                if let Some(mut inner) = inside.bridged() {
+                if let Some(mut inner) = inside.bridged(most) {
                     inner.insert(0, ea);
                     inner.push(eb);
                     return Some(inner);

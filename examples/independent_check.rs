@@ -14,11 +14,9 @@
 //! first and last); the certificate takes every one. Prints one line per
 //! morph that either rejects, and the totals.
 
-use immerse::Curve;
 use immerse::certify::{Player, certify_segment};
 use immerse::morph::{CurveMorphOptions, Tween};
 use rayon::prelude::*;
-use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 use testkit::exact_check::first_invalid;
@@ -80,24 +78,8 @@ fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let set = flag(&args, "--set").unwrap_or_else(|| "motion".into());
     let every = flag(&args, "--every").map_or(1, |s| number(&s).max(1) as usize);
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("curves");
-    type Pair = (String, Vec<immerse::Point>, Vec<immerse::Point>);
-    let list: Vec<Pair> = match set.as_str() {
-        "motion" | "reference" => {
-            let names = if set == "motion" {
-                pairs::motion_pairs()
-            } else {
-                pairs::reference_pairs()
-            };
-            names
-                .into_iter()
-                .map(|(a, b)| {
-                    let ca = Curve::from_path(dir.join(&a)).expect("a readable curve");
-                    let cb = Curve::from_path(dir.join(&b)).expect("a readable curve");
-                    (format!("{a} → {b}"), ca.points, cb.points)
-                })
-                .collect()
-        }
+    let list: Vec<pairs::CurvePair> = match set.as_str() {
+        "motion" | "reference" => pairs::read_set(&set).unwrap_or_default(),
         "stress" => {
             let seed = flag(&args, "--seed").map_or(0xbee5, |s| number(&s));
             let first = flag(&args, "--start").map_or(0, |s| number(&s));

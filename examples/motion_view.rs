@@ -16,11 +16,9 @@
 //! search of `immerse certify`: any triangulations, piece by piece, up to
 //! 64) and counts those it finds invalid, certifies and leaves undecided.
 
-use immerse::Curve;
 use immerse::frames::{Frame, detour, unwind, view_measures};
 use immerse::morph::{CurveMorphOptions, MorphOptions, ThirdVertexPath, Tween};
 use rayon::prelude::*;
-use std::path::Path;
 use std::time::Instant;
 
 use testkit::pairs;
@@ -244,29 +242,13 @@ fn main() {
         };
         options = options.with_correspondence(rule);
     }
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("curves");
     let start = Instant::now();
     let rows: Vec<Row> = match set.as_str() {
-        "motion" | "reference" => {
-            let list = if set == "motion" {
-                pairs::motion_pairs()
-            } else {
-                pairs::reference_pairs()
-            };
-            list.into_iter()
-                .map(|(a, b)| {
-                    let ca = Curve::from_path(dir.join(&a)).expect("a readable curve");
-                    let cb = Curve::from_path(dir.join(&b)).expect("a readable curve");
-                    measure(
-                        format!("{a} → {b}"),
-                        &ca.points,
-                        &cb.points,
-                        &options,
-                        classify,
-                    )
-                })
-                .collect()
-        }
+        "motion" | "reference" => pairs::read_set(&set)
+            .unwrap_or_default()
+            .into_iter()
+            .map(|(name, a, b)| measure(name, &a, &b, &options, classify))
+            .collect(),
         "stress" => {
             let seed = flag(&args, "--seed").map_or(0x5eed_2024, |s| parse_u64(&s));
             let first = flag(&args, "--start").map_or(0, |s| parse_u64(&s));

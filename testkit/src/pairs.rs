@@ -24,3 +24,34 @@ fn pair_list(name: &str) -> Vec<(String, String)> {
         .map(|(a, b)| (a.trim().to_string(), b.trim().to_string()))
         .collect()
 }
+
+/// A pair of curves read from `curves/`: its name (`a → b`), and the
+/// source's and target's points, cleaned and oriented.
+#[cfg(feature = "immerse")]
+pub type CurvePair = (String, Vec<immerse::Point>, Vec<immerse::Point>);
+
+/// The pairs of the set `motion` or `reference`, read; `None` for another
+/// name.
+///
+/// # Panics
+///
+/// Where a curve of the list is not readable.
+#[cfg(feature = "immerse")]
+pub fn read_set(set: &str) -> Option<Vec<CurvePair>> {
+    let list = match set {
+        "motion" => motion_pairs(),
+        "reference" => reference_pairs(),
+        _ => return None,
+    };
+    let dir = crate::workspace_root().join("curves");
+    let read = |name: &str| {
+        immerse::Curve::from_path(dir.join(name))
+            .unwrap_or_else(|e| panic!("curves/{name} is not readable: {e}"))
+            .points
+    };
+    Some(
+        list.into_iter()
+            .map(|(a, b)| (format!("{a} → {b}"), read(&a), read(&b)))
+            .collect(),
+    )
+}

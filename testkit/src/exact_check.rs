@@ -171,15 +171,6 @@ impl Poly {
     }
 }
 
-/// The polynomial of degree ≤ 2 through (0, v0), (½, vh), (1, v1).
-fn interpolate(v0: Q, vh: Q, v1: Q) -> Poly {
-    // v(s) = v0 (2s − 1)(s − 1) − 4 vh s(s − 1) + v1 s(2s − 1).
-    let c0 = v0.clone();
-    let c1 = -qi(3) * &v0 + qi(4) * &vh - &v1;
-    let c2 = qi(2) * &v0 - qi(4) * &vh + qi(2) * &v1;
-    Poly::new(vec![c0, c1, c2])
-}
-
 /// The sign `p` keeps on all of [0, 1], where its Bernstein coefficients
 /// there all have it (they bound it: `p` is their weighted mean with
 /// non-negative weights), or 0 for the zero polynomial; `None` otherwise.
@@ -402,22 +393,50 @@ fn first_where(polys: &[Poly], cond: impl Fn(&[i32]) -> bool) -> Option<(Q, Q)> 
 /// high; equal where exact), or `None` where it is one for every s.
 pub fn first_invalid(p: &[Point], qp: &[Point], tris: &[[u32; 3]]) -> Option<(Q, Q)> {
     let n = p.len();
-    // Each vertex at s = 0, ½ and 1, exactly.
-    let at: Vec<[(Q, Q); 3]> = (0..n)
+    // Each vertex at s = 0, ½ and 1 as integers: every coordinate is an
+    // integer multiple of the smallest power of two among them, and the
+    // values at s = 0 and 1 are doubled so that the midpoint's sum needs
+    // no halving. Every predicate is then a positive multiple of the
+    // true one (the same signs and roots).
+    let split = |x: f64| -> (i64, i32) {
+        assert!(x.is_finite(), "a finite coordinate");
+        let bits = x.to_bits();
+        let exp = ((bits >> 52) & 0x7ff) as i32;
+        let frac = (bits & ((1u64 << 52) - 1)) as i64;
+        let (m, e) = if exp == 0 {
+            (frac, -1074)
+        } else {
+            (frac | (1 << 52), exp - 1075)
+        };
+        (if bits >> 63 == 1 { -m } else { m }, e)
+    };
+    let coords = || p.iter().chain(qp).flat_map(|v| [v.x, v.y]);
+    let least = coords()
+        .filter(|&x| x != 0.0)
+        .map(|x| split(x).1)
+        .min()
+        .unwrap_or(0);
+    let int = |x: f64| -> BigInt {
+        match split(x) {
+            (0, _) => BigInt::ZERO,
+            (m, e) => BigInt::from(m) << ((e - least) as usize),
+        }
+    };
+    let at: Vec<[(BigInt, BigInt); 3]> = (0..n)
         .map(|v| {
-            let (x0, y0, x1, y1) = (q(p[v].x), q(p[v].y), q(qp[v].x), q(qp[v].y));
-            let mid = ((&x0 + &x1) / qi(2), (&y0 + &y1) / qi(2));
-            [(x0, y0), mid, (x1, y1)]
+            let (x0, y0, x1, y1) = (int(p[v].x), int(p[v].y), int(qp[v].x), int(qp[v].y));
+            let mid = (&x0 + &x1, &y0 + &y1);
+            [(x0 * 2, y0 * 2), mid, (x1 * 2, y1 * 2)]
         })
         .collect();
-    let orient = |a: usize, b: usize, c: usize| -> Poly {
+    let orient = |a: usize, b: usize, c: usize| -> IntPoly {
         let val = |i: usize| {
             let (pa, pb, pc) = (&at[a][i], &at[b][i], &at[c][i]);
             (&pb.0 - &pa.0) * (&pc.1 - &pa.1) - (&pb.1 - &pa.1) * (&pc.0 - &pa.0)
         };
-        interpolate(val(0), val(1), val(2))
+        IntPoly::interpolate(val(0), val(1), val(2))
     };
-    let coord = |v: usize, axis: usize| -> Poly {
+    let coord = |v: usize, axis: usize| -> IntPoly {
         let val = |i: usize| {
             let (pw, pv) = (&at[(v + 1) % n][i], &at[v][i]);
             if axis == 0 {
@@ -426,7 +445,7 @@ pub fn first_invalid(p: &[Point], qp: &[Point], tris: &[[u32; 3]]) -> Option<(Q,
                 &pw.1 - &pv.1
             }
         };
-        interpolate(val(0), val(1), val(2))
+        IntPoly::interpolate(val(0), val(1), val(2))
     };
     let mut first: Option<(Q, Q)> = None;
     let mut note = |x: Option<(Q, Q)>| {
@@ -438,17 +457,74 @@ pub fn first_invalid(p: &[Point], qp: &[Point], tris: &[[u32; 3]]) -> Option<(Q,
     };
     for &[a, b, c] in tris {
         let (a, b, c) = (a as usize, b as usize, c as usize);
-        note(first_where(&[orient(a, b, c)], |s| s[0] <= 0));
+        note(decide(&[orient(a, b, c)], |s| s[0] <= 0));
         for (v, u, w) in [(a, b, c), (b, c, a), (c, a, b)] {
             let next = (v + 1) % n;
-            note(first_where(
-                &[orient(v, next, u), orient(v, next, w)],
-                |s| s[0] < 0 && s[1] >= 0,
-            ));
-            note(first_where(&[coord(v, 0), coord(v, 1)], |s| {
+            note(decide(&[orient(v, next, u), orient(v, next, w)], |s| {
+                s[0] < 0 && s[1] >= 0
+            }));
+            note(decide(&[coord(v, 0), coord(v, 1)], |s| {
                 s[0] == 0 && s[1] == 0
             }));
         }
     }
     first
+}
+
+/// A polynomial in s of degree at most 2 with integer coefficients, from
+/// degree 0 up, no trailing zeros.
+struct IntPoly(Vec<BigInt>);
+
+impl IntPoly {
+    /// The quadratic through (0, `v0`), (½, `vh`), (1, `v1`): v(s) =
+    /// v0 (2s − 1)(s − 1) − 4 vh s(s − 1) + v1 s(2s − 1), whose
+    /// coefficients v0, −3v0 + 4vh − v1 and 2v0 − 4vh + 2v1 are integers.
+    fn interpolate(v0: BigInt, vh: BigInt, v1: BigInt) -> IntPoly {
+        let c1 = -3 * &v0 + 4 * &vh - &v1;
+        let c2 = 2 * &v0 - 4 * &vh + 2 * &v1;
+        let mut c = vec![v0, c1, c2];
+        while c
+            .last()
+            .is_some_and(|x| x.sign() == num_bigint::Sign::NoSign)
+        {
+            c.pop();
+        }
+        IntPoly(c)
+    }
+
+    /// As [`constant_sign`], on integers: the Bernstein coefficients on
+    /// [0, 1] (times 2, which keeps their signs).
+    fn constant_sign(&self) -> Option<i32> {
+        let c = &self.0;
+        let bernstein: Vec<BigInt> = match c.len() {
+            0 => return Some(0),
+            1 => vec![c[0].clone()],
+            2 => vec![c[0].clone(), &c[0] + &c[1]],
+            _ => vec![c[0].clone(), 2 * &c[0] + &c[1], &c[0] + &c[1] + &c[2]],
+        };
+        let sign = |x: &BigInt| match x.sign() {
+            num_bigint::Sign::Minus => -1,
+            num_bigint::Sign::NoSign => 0,
+            num_bigint::Sign::Plus => 1,
+        };
+        let first = sign(&bernstein[0]);
+        (first != 0 && bernstein.iter().all(|b| sign(b) == first)).then_some(first)
+    }
+
+    fn rational(&self) -> Poly {
+        Poly::new(self.0.iter().cloned().map(Q::from_integer).collect())
+    }
+}
+
+/// [`first_where`] for integer polynomials: decided at once where each
+/// keeps one sign on [0, 1], else by isolating their roots.
+fn decide(polys: &[IntPoly], cond: impl Fn(&[i32]) -> bool) -> Option<(Q, Q)> {
+    let signs: Option<Vec<i32>> = polys.iter().map(IntPoly::constant_sign).collect();
+    match signs {
+        Some(signs) => cond(&signs).then(|| (qi(0), qi(0))),
+        None => {
+            let rational: Vec<Poly> = polys.iter().map(IntPoly::rational).collect();
+            first_where(&rational, cond)
+        }
+    }
 }

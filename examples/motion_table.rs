@@ -34,8 +34,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let reps: usize = flag(&args, "--reps").map_or(Ok(1), |r| r.parse())?;
     if !args.iter().any(|a| a == "--by-option") {
-        let summary = table(&options_of(&args)?, reps)?;
-        println!("\n{}", summary.line());
+        let timing_only = args.iter().any(|a| a == "--timing-only");
+        let summary = table(&options_of(&args)?, reps, timing_only)?;
+        if timing_only {
+            println!(
+                "\n{} pairs: total time {:.0} ms",
+                summary.pairs, summary.total_ms
+            );
+        } else {
+            println!("\n{}", summary.line());
+        }
         return Ok(());
     }
     // Every option changed alone from the defaults, then the earlier
@@ -66,7 +74,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         };
         let owned: Vec<String> = set.iter().map(|s| s.to_string()).collect();
         println!("## {label}\n");
-        let s = table(&options_of(&owned)?, reps)?;
+        let s = table(&options_of(&owned)?, reps, false)?;
         println!("\n{}\n", s.line());
         rows.push(format!(
             "| {label} | {:.2} | {:.2} | {:.2} | {} |",
@@ -135,14 +143,23 @@ impl Summary {
 
 /// Prints the per-pair table for `options` (each morph timed `reps`
 /// times, the median kept) and returns its summary.
-fn table(options: &CurveMorphOptions, reps: usize) -> Result<Summary, Box<dyn std::error::Error>> {
+fn table(
+    options: &CurveMorphOptions,
+    reps: usize,
+    timing_only: bool,
+) -> Result<Summary, Box<dyn std::error::Error>> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("curves");
     let fractions: Vec<f64> = (0..40).map(|i| f64::from(i) / 39.0).collect();
-    println!(
-        "| pair | n | detour | winding reference | unwind | largest step 40 / 320 / 2,560 | edge | area | angle | distortion | flips | path | fallbacks | valid | time (ms) |"
-    );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    if timing_only {
+        println!("| pair | n | time (ms) |\n|---|---|---|");
+    } else {
+        println!(
+            "| pair | n | detour | winding reference | unwind | largest step 40 / 320 / 2,560 | edge | area | angle | distortion | flips | path | fallbacks | valid | time (ms) |"
+        );
+        println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    }
     let (mut detours, mut unwinds, mut total_ms) = (Vec::new(), Vec::new(), 0.0);
+    let mut timed = 0;
     for (a, b) in pairs::motion_pairs() {
         let ca = Curve::from_path(dir.join(&a))?;
         let cb = Curve::from_path(dir.join(&b))?;
@@ -158,6 +175,10 @@ fn table(options: &CurveMorphOptions, reps: usize) -> Result<Summary, Box<dyn st
         let ms = times[times.len() / 2];
         total_ms += ms;
         match result.expect("at least one repetition") {
+            Ok((report, _)) if timing_only => {
+                timed += 1;
+                println!("| {a} → {b} | {} | {ms:.1} |", report.n);
+            }
             Ok((report, morph)) => {
                 let m = metrics(&morph.frames);
                 let (steps, view) = view_of(&ca.points, &cb.points, options);
@@ -181,7 +202,7 @@ fn table(options: &CurveMorphOptions, reps: usize) -> Result<Summary, Box<dyn st
     }
     detours.sort_by(f64::total_cmp);
     Ok(Summary {
-        pairs: detours.len(),
+        pairs: if timing_only { timed } else { detours.len() },
         median: detours.get(detours.len() / 2).copied().unwrap_or(f64::NAN),
         max: detours.last().copied().unwrap_or(f64::NAN),
         min_unwind: unwinds.iter().copied().fold(f64::INFINITY, f64::min),

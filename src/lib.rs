@@ -88,6 +88,7 @@ pub mod frames;
 pub mod geom;
 mod immersion;
 pub mod morph;
+mod options;
 mod quality;
 pub mod sequence;
 mod tree;

@@ -77,13 +77,6 @@ impl CurveMorphOptions {
         key_tolerance: KEY_TOLERANCE,
     };
 
-    /// Sets the key tolerance (a fraction of the diagonal; checked when the
-    /// morph is planned).
-    pub fn with_key_tolerance(mut self, tolerance: f64) -> Self {
-        self.key_tolerance = tolerance;
-        self
-    }
-
     /// Checks the options that are numbers.
     ///
     /// # Errors
@@ -98,41 +91,23 @@ impl CurveMorphOptions {
             Err(CurveMorphError::KeyTolerance(k))
         }
     }
-
-    /// Sets the triangulation quality.
-    pub fn with_quality(mut self, quality: Quality) -> Self {
-        self.quality = quality;
-        self
-    }
-
-    /// Sets the morph options.
-    pub fn with_morph(mut self, morph: MorphOptions) -> Self {
-        self.morph = morph;
-        self
-    }
-
-    /// Sets the intermediate of incompatible morphs.
-    pub fn with_intermediate(mut self, intermediate: Intermediate) -> Self {
-        self.intermediate = intermediate;
-        self
-    }
-
-    /// Sets the correspondence rule.
-    pub fn with_correspondence(mut self, correspondence: Correspondence) -> Self {
-        self.correspondence = correspondence;
-        self
-    }
-
-    /// Sets how vertex counts are equalised.
-    pub fn with_counts(mut self, counts: Counts) -> Self {
-        self.counts = counts;
-        self
-    }
 }
 
-impl Default for CurveMorphOptions {
-    fn default() -> Self {
-        CurveMorphOptions::DEFAULT
+crate::options::setters! {
+    CurveMorphOptions: Default {
+        /// Sets the key tolerance (a fraction of the diagonal; checked when the
+        /// morph is planned).
+        fn with_key_tolerance(key_tolerance: f64);
+        /// Sets the triangulation quality.
+        fn with_quality(quality: Quality);
+        /// Sets the morph options.
+        fn with_morph(morph: MorphOptions);
+        /// Sets the intermediate of incompatible morphs.
+        fn with_intermediate(intermediate: Intermediate);
+        /// Sets the correspondence rule.
+        fn with_correspondence(correspondence: Correspondence);
+        /// Sets how vertex counts are equalised.
+        fn with_counts(counts: Counts);
     }
 }
 

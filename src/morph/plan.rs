@@ -6,6 +6,8 @@ use crate::flip::sequence::crossings_per_shift;
 use crate::geom::Point;
 use crate::geom::polygon::min_triangle_angle as min_angle;
 use crate::immersion::NotSelfOverlapping;
+#[cfg(feature = "cli")]
+use crate::morph::propagate::paths::HIDE_EXPERIMENTAL;
 use crate::morph::staged::{Limit, Peak, SideInput};
 use crate::morph::{Fallback, Morph};
 use crate::morph::{MorphError, MorphOptions, Staged, ThirdVertexPath};
@@ -230,10 +232,7 @@ pub enum Correspondence {
     /// rotation, scale and translation), with the inserted vertices placed
     /// where the other curve's vertices are (original vertices stay
     /// exact). What the user sees corresponds.
-    #[cfg_attr(
-        all(feature = "cli", not(feature = "experimental")),
-        value(hide = true)
-    )]
+    #[cfg_attr(feature = "cli", value(hide = HIDE_EXPERIMENTAL))]
     Outline,
     /// As outline, with the curves' corners (turns of 60° or more, else rounded
     /// caps: 160° within 3% of the perimeter) matched in order and the arc
@@ -252,25 +251,16 @@ pub enum Correspondence {
     MinFlips,
     /// Match the pivot vertices of the two triangulations (Mukherjee & Gopi
     /// §6.1).
-    #[cfg_attr(
-        all(feature = "cli", not(feature = "experimental")),
-        value(hide = true)
-    )]
+    #[cfg_attr(feature = "cli", value(hide = HIDE_EXPERIMENTAL))]
     Pivot,
     /// The cyclic shift that best matches the shapes themselves.
     ///
     /// The least sum of squared distances between matched vertices after
     /// normalising position and size.
-    #[cfg_attr(
-        all(feature = "cli", not(feature = "experimental")),
-        value(hide = true)
-    )]
+    #[cfg_attr(feature = "cli", value(hide = HIDE_EXPERIMENTAL))]
     Shape,
     /// Vertex 0 matches vertex 0.
-    #[cfg_attr(
-        all(feature = "cli", not(feature = "experimental")),
-        value(hide = true)
-    )]
+    #[cfg_attr(feature = "cli", value(hide = HIDE_EXPERIMENTAL))]
     Identity,
     /// Plan with the outline, min-flips and (when the corners match up) corners
     /// rules; keep the one whose vertices travel less.

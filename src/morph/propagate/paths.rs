@@ -7,6 +7,12 @@
 use crate::geom::Point;
 use std::f64::consts::PI;
 
+/// Whether the command line hides the experimental paths and
+/// correspondences (from its help and its list of values): unless built
+/// with the `experimental` feature.
+#[cfg(feature = "cli")]
+pub(crate) const HIDE_EXPERIMENTAL: bool = !cfg!(feature = "experimental");
+
 /// How each triangle's third vertex travels from its source to its target
 /// position relative to its base. With the `cli` feature it is the command
 /// line's `--path`, variants in its order (each variant's first doc
@@ -50,38 +56,26 @@ pub enum ThirdVertexPath {
     /// own turns instead of cutting across them. An immersion for every t.
     /// The default path tries it on the last leg where `hybrid` travels
     /// less than `straight`, and keeps the one whose vertices travel least.
-    #[cfg_attr(
-        all(feature = "cli", not(feature = "experimental")),
-        value(hide = true)
-    )]
+    #[cfg_attr(feature = "cli", value(hide = HIDE_EXPERIMENTAL))]
     Polar,
     /// Linear interpolation of triangle angles (guaranteed, more distortion).
     ///
     /// The triangles are laid out from their interpolated angles: an
     /// immersion for every t.
-    #[cfg_attr(
-        all(feature = "cli", not(feature = "experimental")),
-        value(hide = true)
-    )]
+    #[cfg_attr(feature = "cli", value(hide = HIDE_EXPERIMENTAL))]
     Angle,
     /// The paper's rotate-and-slide path (checked; falls back to hybrid).
     ///
     /// Mukherjee & Gopi's path (their Fig. 7): keep the length of a
     /// propagation edge monotone. Not guaranteed: it may fold the shape
     /// (detected, then `hybrid` is used instead).
-    #[cfg_attr(
-        all(feature = "cli", not(feature = "experimental")),
-        value(hide = true)
-    )]
+    #[cfg_attr(feature = "cli", value(hide = HIDE_EXPERIMENTAL))]
     RotateSlide,
     /// Linear base-relative coordinates (checked; falls back to hybrid).
     ///
     /// Not guaranteed either: it may fold the shape on strong deformations
     /// (detected, then `hybrid` is used instead).
-    #[cfg_attr(
-        all(feature = "cli", not(feature = "experimental")),
-        value(hide = true)
-    )]
+    #[cfg_attr(feature = "cli", value(hide = HIDE_EXPERIMENTAL))]
     Linear,
 }
 

@@ -91,6 +91,8 @@ pub mod morph;
 mod options;
 mod quality;
 pub mod sequence;
+#[cfg(test)]
+mod testing;
 mod tree;
 
 pub use curve::Curve;

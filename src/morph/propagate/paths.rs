@@ -367,14 +367,11 @@ pub(crate) fn base_frame_angles(c: Point) -> Option<[f64; 3]> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testing::points;
 
     #[test]
     fn base_frame_round_trip() {
-        let (x, y, w) = (
-            Point::new(1.0, 2.0),
-            Point::new(4.0, 6.0),
-            Point::new(-1.0, 5.0),
-        );
+        let [x, y, w] = points([(1.0, 2.0), (4.0, 6.0), (-1.0, 5.0)]);
         let c = to_base_frame(x, y, w);
         assert!((from_base_frame(x, y, c) - w).length() < 1e-12);
         assert!(c.y > 0.0);
@@ -415,47 +412,59 @@ mod tests {
         assert!(matches!(plan, RotateSlide::Line { .. }));
     }
 
-    #[test]
-    fn path_names_round_trip() {
-        for p in ThirdVertexPath::ALL {
-            let parsed = p.as_str().parse::<ThirdVertexPath>();
-            if cfg!(feature = "experimental") || !p.is_experimental() {
-                assert_eq!(parsed, Ok(p));
+    /// Every value of `all` parses back from its name when this build
+    /// offers it (`offered`: 3 values, all 7 with the `experimental`
+    /// feature), else is refused naming `names`, the values offered;
+    /// `unknown` is refused.
+    fn names_round_trip<T>(
+        all: &[T],
+        name: fn(T) -> &'static str,
+        is_experimental: fn(T) -> bool,
+        offered: &[T],
+        names: &str,
+        unknown: &str,
+    ) where
+        T: Copy + PartialEq + std::fmt::Debug + std::str::FromStr<Err = String>,
+    {
+        for &v in all {
+            let parsed = name(v).parse::<T>();
+            if cfg!(feature = "experimental") || !is_experimental(v) {
+                assert_eq!(parsed, Ok(v));
             } else {
-                // Refused, naming the offered paths.
+                // Refused, naming the offered values.
                 let e = parsed.unwrap_err();
-                assert!(
-                    e.contains("experimental") && e.contains("rigid, hybrid, straight"),
-                    "{e}"
-                );
+                assert!(e.contains("experimental") && e.contains(names), "{e}");
             }
         }
         assert_eq!(
-            ThirdVertexPath::offered().len(),
+            offered.len(),
             if cfg!(feature = "experimental") { 7 } else { 3 }
         );
-        assert!("spline".parse::<ThirdVertexPath>().is_err());
+        assert!(unknown.parse::<T>().is_err());
+    }
+
+    #[test]
+    fn path_names_round_trip() {
+        names_round_trip(
+            &ThirdVertexPath::ALL,
+            ThirdVertexPath::as_str,
+            ThirdVertexPath::is_experimental,
+            &ThirdVertexPath::offered(),
+            "rigid, hybrid, straight",
+            "spline",
+        );
     }
 
     #[test]
     fn correspondence_names_round_trip() {
         use crate::morph::Correspondence;
-        for c in Correspondence::ALL {
-            let parsed = c.as_str().parse::<Correspondence>();
-            if cfg!(feature = "experimental") || !c.is_experimental() {
-                assert_eq!(parsed, Ok(c));
-            } else {
-                let e = parsed.unwrap_err();
-                assert!(
-                    e.contains("experimental") && e.contains("corners, min-flips, best"),
-                    "{e}"
-                );
-            }
-        }
-        assert_eq!(
-            Correspondence::offered().len(),
-            if cfg!(feature = "experimental") { 7 } else { 3 }
+        names_round_trip(
+            &Correspondence::ALL,
+            Correspondence::as_str,
+            Correspondence::is_experimental,
+            &Correspondence::offered(),
+            "corners, min-flips, best",
+            "nearest",
         );
-        assert!("nearest".parse::<Correspondence>().is_err());
     }
 }

@@ -369,16 +369,12 @@ pub(crate) fn write_keyed(
             keys: &t.keys,
         }));
     }
-    let mut written = keyed::write_certified(kind, &outlines, |digits| {
-        let keys = render::DrawingKeys {
+    let mut written = keyed::write_certified(kind, &outlines, style, fps, looping, |digits| {
+        render::DrawingKeys {
             scenes: &scenes,
             frames: play.frames,
             view,
             digits,
-        };
-        match kind {
-            Kind::Lottie => render::lottie_drawing(&keys, style, fps),
-            Kind::AnimatedSvg => render::animated_svg_drawing(&keys, style, fps, looping),
         }
     })?;
     // Keys per shape in painting order.

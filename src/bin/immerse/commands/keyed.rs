@@ -118,19 +118,39 @@ pub(crate) fn write(
         name: "",
         keys: &played.keys,
     }];
-    write_certified(kind, &outline, |digits| {
-        let keys = render::Keys {
-            shapes: &shapes,
-            times: &times,
-            frames: played.frames,
-            view,
-            digits,
-        };
-        match kind {
-            Kind::Lottie => render::lottie_keys(&keys, style, fps),
-            Kind::AnimatedSvg => render::animated_svg_keys(&keys, style, fps, looping),
-        }
+    write_certified(kind, &outline, style, fps, looping, |digits| render::Keys {
+        shapes: &shapes,
+        times: &times,
+        frames: played.frames,
+        view,
+        digits,
     })
+}
+
+/// Writes a Lottie file from keys `K`.
+type LottieWriter<K> = fn(&K, &render::Style, f64) -> Result<String, render::RenderError>;
+
+/// Writes an animated SVG from keys `K`.
+type SvgWriter<K> =
+    fn(&K, &render::Style, f64, render::Loop) -> Result<String, render::RenderError>;
+
+/// The keys a document is written from, a curve's or a drawing's, with
+/// their writers.
+pub(crate) trait DocumentKeys: Sized {
+    /// The Lottie writer.
+    const LOTTIE: LottieWriter<Self>;
+    /// The animated SVG writer.
+    const ANIMATED_SVG: SvgWriter<Self>;
+}
+
+impl DocumentKeys for render::Keys<'_> {
+    const LOTTIE: LottieWriter<Self> = render::lottie_keys;
+    const ANIMATED_SVG: SvgWriter<Self> = render::animated_svg_keys;
+}
+
+impl DocumentKeys for render::DrawingKeys<'_> {
+    const LOTTIE: LottieWriter<Self> = render::lottie_drawing;
+    const ANIMATED_SVG: SvgWriter<Self> = render::animated_svg_drawing;
 }
 
 /// The document `render` writes with the fewest decimals that certify as
@@ -142,11 +162,18 @@ pub(crate) fn write(
 ///
 /// A render error, or none of the precisions certified (the message names
 /// the shape, the segment and why).
-pub(crate) fn write_certified(
+pub(crate) fn write_certified<K: DocumentKeys>(
     kind: Kind,
     outlines: &[Outline<'_>],
-    render: impl Fn(Option<u32>) -> Result<String, render::RenderError>,
+    style: &render::Style,
+    fps: f64,
+    looping: render::Loop,
+    keys: impl Fn(Option<u32>) -> K,
 ) -> anyhow::Result<Written> {
+    let render = |digits| match kind {
+        Kind::Lottie => K::LOTTIE(&keys(digits), style, fps),
+        Kind::AnimatedSvg => K::ANIMATED_SVG(&keys(digits), style, fps, looping),
+    };
     let mut why = String::new();
     // The fewest decimals that certify with the keys' triangulations,
     // where no precision certifies as `immerse certify` reads the file.

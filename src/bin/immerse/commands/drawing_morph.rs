@@ -313,14 +313,7 @@ fn paint(s: &Style) -> render::Paint {
 /// # Errors
 ///
 /// As [`keyed::write_certified`].
-pub(crate) fn write_keyed(
-    kind: Kind,
-    play: &DrawingPlay,
-    view: render::View,
-    style: &render::Style,
-    fps: f64,
-    looping: render::Loop,
-) -> anyhow::Result<Written> {
+pub(crate) fn write_keyed(doc: keyed::Document<'_>, play: &DrawingPlay) -> anyhow::Result<Written> {
     let shapes: Vec<Vec<Vec<render::Frame>>> = per_track(play, |t| {
         t.keys
             .iter()
@@ -361,7 +354,7 @@ pub(crate) fn write_keyed(
     let mut outlines = Vec::new();
     for scene in &play.scenes {
         let mut tracks: Vec<&ShapeTrack> = scene.tracks.iter().collect();
-        if kind == Kind::Lottie {
+        if doc.kind == Kind::Lottie {
             tracks.reverse();
         }
         outlines.extend(tracks.into_iter().map(|t| Outline {
@@ -369,13 +362,11 @@ pub(crate) fn write_keyed(
             keys: &t.keys,
         }));
     }
-    let mut written = keyed::write_certified(kind, &outlines, style, fps, looping, |digits| {
-        render::DrawingKeys {
-            scenes: &scenes,
-            frames: play.frames,
-            view,
-            digits,
-        }
+    let mut written = keyed::write_certified(doc, &outlines, |digits| render::DrawingKeys {
+        scenes: &scenes,
+        frames: play.frames,
+        view: doc.view,
+        digits,
     })?;
     // Keys per shape in painting order.
     written.per_shape = play
@@ -409,20 +400,7 @@ pub(crate) fn write_images(
         FormatArg::AnimatedSvg => Kind::AnimatedSvg,
         _ => return super::write::write_frames(frames, None, out, images, writing),
     };
-    let Writing {
-        ref style,
-        fps,
-        looping,
-        ..
-    } = *writing;
-    let view = render::View::fit(frames, style);
-    let written = write_keyed(kind, play, view, style, fps, looping)
-        .with_context(|| format!("-o {}", out.display()))?;
-    keyed::save(&written, out, writing.force)?;
-    if !writing.quiet {
-        output::note(&keyed::describe(kind, &written, written.text.len()));
-    }
-    Ok(())
+    super::write::write_document(kind, frames, out, writing, |doc| write_keyed(doc, play))
 }
 
 pub(crate) fn report(a: &Drawing, b: &Drawing, m: &Matching) -> MatchingReport {

@@ -93,21 +93,25 @@ pub(crate) struct Outline<'a> {
     pub(crate) keys: &'a [Keyframe],
 }
 
-/// The document of `kind` for `played`, in the pixels of `view`, with
-/// the fewest decimals that certify as written.
+/// What a document is and how it draws and plays: its kind, the pixels
+/// of its view, its style, its frame rate and how it loops.
+#[derive(Clone, Copy)]
+pub(crate) struct Document<'a> {
+    pub(crate) kind: Kind,
+    pub(crate) view: render::View,
+    pub(crate) style: &'a render::Style,
+    pub(crate) fps: f64,
+    pub(crate) looping: render::Loop,
+}
+
+/// The document `doc` for `played`, with the fewest decimals that
+/// certify as written.
 ///
 /// # Errors
 ///
 /// A render error, or none of the precisions certified (the message names
 /// the segment and why).
-pub(crate) fn write(
-    kind: Kind,
-    played: &Played,
-    view: render::View,
-    style: &render::Style,
-    fps: f64,
-    looping: render::Loop,
-) -> anyhow::Result<Written> {
+pub(crate) fn write(doc: Document<'_>, played: &Played) -> anyhow::Result<Written> {
     let shapes: Vec<render::Frame> = played
         .keys
         .iter()
@@ -118,11 +122,11 @@ pub(crate) fn write(
         name: "",
         keys: &played.keys,
     }];
-    write_certified(kind, &outline, style, fps, looping, |digits| render::Keys {
+    write_certified(doc, &outline, |digits| render::Keys {
         shapes: &shapes,
         times: &times,
         frames: played.frames,
-        view,
+        view: doc.view,
         digits,
     })
 }
@@ -153,8 +157,8 @@ impl DocumentKeys for render::DrawingKeys<'_> {
     const ANIMATED_SVG: SvgWriter<Self> = render::animated_svg_drawing;
 }
 
-/// The document `render` writes with the fewest decimals that certify as
-/// written: read back with the library's reader, its animated outlines
+/// The document `doc` of the keys `keys` gives (at the decimals asked)
+/// with the fewest decimals that certify as written: read back with the library's reader, its animated outlines
 /// (in the order of `outlines`, which is the document's) certified
 /// segment by segment with the keys' triangulations.
 ///
@@ -163,13 +167,17 @@ impl DocumentKeys for render::DrawingKeys<'_> {
 /// A render error, or none of the precisions certified (the message names
 /// the shape, the segment and why).
 pub(crate) fn write_certified<K: DocumentKeys>(
-    kind: Kind,
+    doc: Document<'_>,
     outlines: &[Outline<'_>],
-    style: &render::Style,
-    fps: f64,
-    looping: render::Loop,
     keys: impl Fn(Option<u32>) -> K,
 ) -> anyhow::Result<Written> {
+    let Document {
+        kind,
+        style,
+        fps,
+        looping,
+        ..
+    } = doc;
     let render = |digits| match kind {
         Kind::Lottie => K::LOTTIE(&keys(digits), style, fps),
         Kind::AnimatedSvg => K::ANIMATED_SVG(&keys(digits), style, fps, looping),

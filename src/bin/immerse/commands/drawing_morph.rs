@@ -91,7 +91,7 @@ pub(crate) fn run(
         .map(|&t| tween.frame(t))
         .collect::<Result<Vec<_>, _>>()?;
     let elapsed = start.elapsed();
-    if let Some(json) = &args.json {
+    if let Some(json) = &args.out.json {
         let report = DrawingMorphJson {
             matching: report(&a, &b, &matching),
             notices,
@@ -100,7 +100,7 @@ pub(crate) fn run(
         };
         super::write_json(json, &report, false, args.run.force)?;
     }
-    if let (Some(out), Some(images)) = (&args.output, images) {
+    if let (Some(out), Some(images)) = (&args.out.output, images) {
         let rendered: Vec<render::Frame> = frames.iter().map(render_frame).collect();
         let samples: Vec<(usize, f64)> = times.iter().map(|&t| (0, t)).collect();
         let writing = super::write::writing(args);

@@ -33,7 +33,7 @@ impl PlayArgs {
 
 /// The image style of `immerse morph`.
 pub(crate) fn style(args: &MorphArgs) -> render::Style {
-    args.play.style(args.image.size)
+    args.play.style(args.out.image.size)
 }
 
 /// How `immerse morph`'s animations play.
@@ -56,7 +56,7 @@ pub(crate) struct Writing {
 pub(crate) fn writing(args: &MorphArgs) -> Writing {
     Writing {
         style: style(args),
-        fps: args.image.fps,
+        fps: args.out.image.fps,
         looping: looping(args),
         force: args.run.force,
         quiet: args.run.quiet,

@@ -88,8 +88,11 @@ pub mod frames;
 pub mod geom;
 mod immersion;
 pub mod morph;
+mod options;
 mod quality;
 pub mod sequence;
+#[cfg(test)]
+mod testing;
 mod tree;
 
 pub use curve::Curve;

@@ -470,35 +470,23 @@ pub(crate) fn triangulate_exact(start: &[Point], end: &[Point], s: f64) -> Optio
 mod tests {
     use super::*;
     use crate::immersion::triangulate;
-
-    /// The test kit's xorshift64 stream from `seed`, uniform in [0, 1).
-    fn rng(seed: u64) -> impl FnMut() -> f64 {
-        let mut s = seed | 1;
-        move || testkit::rng::unit_from_bits(testkit::rng::xorshift64(&mut s))
-    }
+    use crate::testing::{grid_rounds, unit_square};
 
     #[test]
     fn the_exact_dp_decides_as_the_immersion_dp() {
         // At s = 0 the exact DP sees the f64 shape itself: its answer must
         // be the decision DP's, on shapes with many degeneracies.
-        let mut r = rng(5);
-        let (mut yes, mut no) = (0, 0);
-        for round in 0..3000 {
-            let n = 3 + (r() * 9.0) as usize;
-            let g = if round % 2 == 0 { 4.0 } else { 1000.0 };
-            let pts: Vec<Point> = (0..n)
-                .map(|_| Point::new((r() * g).floor(), (r() * g).floor()))
-                .collect();
+        let (yes, no) = grid_rounds(5, 3000, (3, 9.0), (2, 4.0), |n, point| {
+            let pts: Vec<Point> = (0..n).map(|_| point()).collect();
             let want = triangulate(&pts).is_ok();
             let got = triangulate_exact(&pts, &pts, 0.0);
             assert_eq!(got.is_some(), want, "{pts:?}");
-            if let Some(t) = got {
-                assert_eq!(check(&pts, &t), Ok(()), "{pts:?}");
-                yes += 1;
-            } else {
-                no += 1;
-            }
-        }
+            let Some(t) = got else {
+                return Some(false);
+            };
+            assert_eq!(check(&pts, &t), Ok(()), "{pts:?}");
+            Some(true)
+        });
         assert!(yes > 200 && no > 200, "{yes} {no}");
     }
 
@@ -507,36 +495,25 @@ mod tests {
         // On a grid, p(½) = (P + Q)/2 is a double: the exact DP at s = ½
         // (orientations of the moving points, filtered then in big
         // integers) must answer as the decision DP on that shape.
-        let mut r = rng(17);
-        let (mut yes, mut no) = (0, 0);
-        for round in 0..3000 {
-            let n = 3 + (r() * 9.0) as usize;
-            let g = if round % 2 == 0 { 4.0 } else { 1000.0 };
-            let mut pt = || Point::new((r() * g).floor(), (r() * g).floor());
-            let (p, q): (Vec<Point>, Vec<Point>) = (0..n).map(|_| (pt(), pt())).unzip();
+        let (yes, no) = grid_rounds(17, 3000, (3, 9.0), (2, 4.0), |n, point| {
+            let (p, q): (Vec<Point>, Vec<Point>) = (0..n).map(|_| (point(), point())).unzip();
             let mid: Vec<Point> = p.iter().zip(&q).map(|(a, b)| (*a + *b) * 0.5).collect();
             let want = triangulate(&mid).is_ok();
             let got = triangulate_exact(&p, &q, 0.5);
             assert_eq!(got.is_some(), want, "{p:?} {q:?}");
-            if let Some(t) = got {
-                assert_eq!(check(&mid, &t), Ok(()));
-                assert_eq!(valid_at_unchecked(&p, &q, &t, 0.5), Ok(()));
-                yes += 1;
-            } else {
-                no += 1;
-            }
-        }
+            let Some(t) = got else {
+                return Some(false);
+            };
+            assert_eq!(check(&mid, &t), Ok(()));
+            assert_eq!(valid_at_unchecked(&p, &q, &t, 0.5), Ok(()));
+            Some(true)
+        });
         assert!(yes > 100 && no > 200, "{yes} {no}");
     }
 
     #[test]
     fn a_half_turned_square_is_invalid_at_one_half() {
-        let p = [
-            Point::new(0.0, 0.0),
-            Point::new(1.0, 0.0),
-            Point::new(1.0, 1.0),
-            Point::new(0.0, 1.0),
-        ];
+        let p = unit_square();
         let q: Vec<Point> = p.iter().map(|a| Point::new(1.0, 1.0) - *a).collect();
         let r = certify_motion(&p, &q, &[], Player::Exact, MotionOptions::default());
         assert_eq!(r.verdict, Verdict::Invalid { at: 0.5 }, "{r:?}");

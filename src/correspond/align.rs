@@ -483,6 +483,7 @@ fn residual(a: &[Point], b: &[Point], k: usize) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testing::{points, unit_square};
 
     /// The vertices of `p` that are sharp corners.
     fn corner_vertices(p: &[Point]) -> Vec<usize> {
@@ -547,17 +548,8 @@ mod tests {
 
     #[test]
     fn curves_whose_corners_differ_have_no_corner_match() {
-        let triangle = [
-            Point::new(0.0, 0.0),
-            Point::new(4.0, 0.0),
-            Point::new(1.0, 3.0),
-        ];
-        let square = [
-            Point::new(0.0, 0.0),
-            Point::new(1.0, 0.0),
-            Point::new(1.0, 1.0),
-            Point::new(0.0, 1.0),
-        ];
+        let triangle = points([(0.0, 0.0), (4.0, 0.0), (1.0, 3.0)]);
+        let square = unit_square();
         assert!(align_corners(&triangle, &square).is_none());
         // A circle has no corner at all.
         assert!(align_corners(&circle(40, 0.0, 1.0), &circle(50, 0.0, 1.0)).is_none());

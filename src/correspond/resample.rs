@@ -122,15 +122,11 @@ impl Ord for Weight {
 mod tests {
     use super::*;
     use crate::geom::{Orientation, orient};
+    use crate::testing::{points, unit_square};
 
     #[test]
     fn inserted_vertices_lie_on_edges_and_originals_stay() {
-        let sq = vec![
-            Point::new(0.0, 0.0),
-            Point::new(4.0, 0.0),
-            Point::new(4.0, 1.0),
-            Point::new(0.0, 1.0),
-        ];
+        let sq = points([(0.0, 0.0), (4.0, 0.0), (4.0, 1.0), (0.0, 1.0)]);
         let (out, origin) = insert_vertices(&sq, 5);
         assert_eq!(out.len(), 9);
         for (i, o) in origin.iter().enumerate() {
@@ -151,12 +147,7 @@ mod tests {
 
     #[test]
     fn arc_length_resampling_is_even() {
-        let sq = vec![
-            Point::new(0.0, 0.0),
-            Point::new(1.0, 0.0),
-            Point::new(1.0, 1.0),
-            Point::new(0.0, 1.0),
-        ];
+        let sq = unit_square();
         let r = resample_arc_length(&sq, 8);
         assert_eq!(r.len(), 8);
         for i in 0..8 {

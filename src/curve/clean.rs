@@ -128,13 +128,17 @@ mod tests {
             .collect()
     }
 
+    /// [`build`] of the points `xy` (not lines of a text file), named
+    /// `name` in the curve and in messages.
+    fn build_as(name: &str, xy: &[(f64, f64)]) -> Result<Curve, CurveError> {
+        build(name.into(), raw(xy), false, name)
+    }
+
     #[test]
     fn drops_closing_and_consecutive_duplicates() {
-        let c = build(
-            "sq".into(),
-            raw(&[(0., 0.), (1., 0.), (1., 0.), (1., 1.), (0., 1.), (0., 0.)]),
-            false,
+        let c = build_as(
             "sq",
+            &[(0., 0.), (1., 0.), (1., 0.), (1., 1.), (0., 1.), (0., 0.)],
         )
         .unwrap();
         assert_eq!(c.points.len(), 4);
@@ -144,13 +148,7 @@ mod tests {
 
     #[test]
     fn reverses_clockwise_keeping_the_first_point() {
-        let c = build(
-            "cw".into(),
-            raw(&[(0., 0.), (0., 1.), (1., 1.), (1., 0.)]),
-            false,
-            "cw",
-        )
-        .unwrap();
+        let c = build_as("cw", &[(0., 0.), (0., 1.), (1., 1.), (1., 0.)]).unwrap();
         assert!(c.reversed);
         assert_eq!(c.turning_as_given, Turning::Number(-1));
         assert_eq!(c.points[0], Point::new(0., 0.));
@@ -170,7 +168,7 @@ mod tests {
             (0., 0.),
             (0., 0.),
         ];
-        let c = build("cw".into(), raw(&raw_pts), false, "cw").unwrap();
+        let c = build_as("cw", &raw_pts).unwrap();
         assert!(c.reversed);
         assert_eq!(c.source_vertex.len(), 7);
         for (r, &(x, y)) in raw_pts.iter().enumerate() {
@@ -181,34 +179,16 @@ mod tests {
 
     #[test]
     fn rejects_degenerate_curves() {
-        let e = build("x".into(), raw(&[(0., 0.), (1., 1.), (0., 0.)]), false, "x").unwrap_err();
+        let e = build_as("x", &[(0., 0.), (1., 1.), (0., 0.)]).unwrap_err();
         assert!(
             matches!(e, CurveError::TooFewPoints { distinct: 2, .. }),
             "{e}"
         );
-        let e = build(
-            "x".into(),
-            raw(&[(0., 0.), (1., 1.), (3., 3.), (2., 2.)]),
-            false,
-            "x",
-        )
-        .unwrap_err();
+        let e = build_as("x", &[(0., 0.), (1., 1.), (3., 3.), (2., 2.)]).unwrap_err();
         assert!(matches!(e, CurveError::ZeroArea { .. }), "{e}");
-        let e = build(
-            "x".into(),
-            raw(&[(0., 0.), (1., f64::NAN), (3., 3.)]),
-            false,
-            "x",
-        )
-        .unwrap_err();
+        let e = build_as("x", &[(0., 0.), (1., f64::NAN), (3., 3.)]).unwrap_err();
         assert!(matches!(e, CurveError::NonFinite { index: 1, .. }), "{e}");
-        let e = build(
-            "x".into(),
-            raw(&[(0., 0.), (1., 1e40), (3., 3.)]),
-            false,
-            "x",
-        )
-        .unwrap_err();
+        let e = build_as("x", &[(0., 0.), (1., 1e40), (3., 3.)]).unwrap_err();
         assert!(matches!(e, CurveError::OutOfRange { index: 1, .. }), "{e}");
     }
 

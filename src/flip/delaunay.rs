@@ -175,16 +175,12 @@ fn is_flippable(points: &[Point], a: u32, b: u32, c: u32, d: u32) -> bool {
 mod tests {
     use super::*;
     use crate::immersion::triangulate;
+    use crate::testing::points;
 
     #[test]
     fn square_with_bad_diagonal_flips() {
         // A kite where diagonal 0–2 is not Delaunay.
-        let pts = vec![
-            Point::new(0.0, 0.0),
-            Point::new(2.0, -0.5),
-            Point::new(4.0, 0.0),
-            Point::new(2.0, 0.5),
-        ];
+        let pts = points([(0.0, 0.0), (2.0, -0.5), (4.0, 0.0), (2.0, 0.5)]).to_vec();
         let imm = Immersion {
             points: pts,
             triangles: vec![[0, 1, 2], [0, 2, 3]],
@@ -196,12 +192,7 @@ mod tests {
 
     #[test]
     fn non_immersions_come_back_unchanged() {
-        let pts = vec![
-            Point::new(0.0, 0.0),
-            Point::new(2.0, 0.5),
-            Point::new(4.0, 0.0),
-            Point::new(2.0, -0.5),
-        ]; // clockwise
+        let pts = points([(0.0, 0.0), (2.0, 0.5), (4.0, 0.0), (2.0, -0.5)]).to_vec(); // clockwise
         let bad = Immersion {
             points: pts,
             triangles: vec![[0, 1, 2], [0, 2, 3]],

@@ -198,7 +198,7 @@ pub(crate) fn gate(p: &[Point], quad: [u32; 4], floor: f64) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::morph::propagate::compatible::tests::{Rng, random_triangulation};
+    use crate::morph::propagate::compatible::tests::{Rng, random_polygon, random_triangulation};
 
     /// The number of crossings between the diagonals of two
     /// triangulations, pair by pair: the oracle of the fast counts.
@@ -208,13 +208,22 @@ mod tests {
             .sum()
     }
 
+    /// Two random triangulations of one [`random_polygon`].
+    fn two_triangulations(
+        rng: &mut Rng,
+        min: usize,
+        span: f64,
+    ) -> (usize, Vec<[u32; 3]>, Vec<[u32; 3]>) {
+        let (n, t1) = random_polygon(rng, min, span);
+        let t2 = random_triangulation(n as u32, rng);
+        (n, t1, t2)
+    }
+
     #[test]
     fn flip_sequence_reaches_the_target_at_the_counted_cost() {
         let mut rng = Rng(0x5eed);
         for _ in 0..300 {
-            let n = 4 + (rng.next() * 40.0) as usize;
-            let t1 = random_triangulation(n as u32, &mut rng);
-            let t2 = random_triangulation(n as u32, &mut rng);
+            let (n, t1, t2) = two_triangulations(&mut rng, 4, 40.0);
             let mut cur = FlipTriangulation::new(n, &t1);
             let target = FlipTriangulation::new(n, &t2);
             let target_diagonals = target.diagonals();
@@ -270,9 +279,8 @@ mod tests {
     fn the_crossing_counter_matches_the_pairwise_count() {
         let mut rng = Rng(0xc0ffee);
         for _ in 0..100 {
-            let n = 4 + (rng.next() * 60.0) as usize;
-            let goal =
-                FlipTriangulation::new(n, &random_triangulation(n as u32, &mut rng)).diagonals();
+            let (n, tris) = random_polygon(&mut rng, 4, 60.0);
+            let goal = FlipTriangulation::new(n, &tris).diagonals();
             let counter = CrossingCounter::new(&goal);
             for a in 0..n as u32 {
                 for b in a + 2..n as u32 {
@@ -288,9 +296,7 @@ mod tests {
     fn fast_crossing_count_matches_the_pairwise_count() {
         let mut rng = Rng(77);
         for _ in 0..100 {
-            let n = 4 + (rng.next() * 30.0) as usize;
-            let t1 = random_triangulation(n as u32, &mut rng);
-            let t2 = random_triangulation(n as u32, &mut rng);
+            let (n, t1, t2) = two_triangulations(&mut rng, 4, 30.0);
             let per_shift = crossings_per_shift(n, &t1, &t2);
             let d1 = FlipTriangulation::new(n, &t1).diagonals();
             for (k, &c) in per_shift.iter().enumerate() {

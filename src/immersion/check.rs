@@ -244,19 +244,11 @@ pub(crate) fn check_triangles(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn square() -> Vec<Point> {
-        vec![
-            Point::new(0.0, 0.0),
-            Point::new(1.0, 0.0),
-            Point::new(1.0, 1.0),
-            Point::new(0.0, 1.0),
-        ]
-    }
+    use crate::testing::{regular_polygon, unit_square};
 
     #[test]
     fn defects_are_named() {
-        let sq = square();
+        let sq = unit_square();
         assert_eq!(
             check(&sq, &[[0, 1, 2]]),
             Err(ImmersionDefect::TriangleCount {
@@ -279,7 +271,7 @@ mod tests {
         assert!(check(&sq, &[[0, 1, 2], [0, 2, 3]]).is_ok());
         assert!(check(&sq, &[[0, 1, 3], [1, 2, 3]]).is_ok());
         // Clockwise square: combinatorially fine, geometrically invalid.
-        let mut cw = sq.clone();
+        let mut cw = sq;
         cw.reverse();
         assert!(matches!(
             check(&cw, &[[0, 1, 2], [0, 2, 3]]),
@@ -293,12 +285,7 @@ mod tests {
         // caught by counts or crossing; build a list with crossing diagonals
         // but correct counts is impossible for a true triangulation, so test
         // the stack directly through a bad list.
-        let hex: Vec<Point> = (0..6)
-            .map(|i| {
-                let a = i as f64 * std::f64::consts::TAU / 6.0;
-                Point::new(a.cos(), a.sin())
-            })
-            .collect();
+        let hex = regular_polygon(6);
         assert!(check(&hex, &[[0, 1, 2], [2, 3, 4], [4, 5, 0], [0, 2, 4]]).is_err()); // [4,5,0] unordered
         assert!(check(&hex, &[[0, 1, 2], [2, 3, 4], [0, 4, 5], [0, 2, 4]]).is_ok());
         let r = check(&hex, &[[0, 1, 3], [1, 2, 4], [0, 3, 5], [3, 4, 5]]);

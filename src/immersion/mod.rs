@@ -357,12 +357,7 @@ mod tests {
         assert_eq!(super::thousands(7_671_151_536), "7,671,151,536");
     }
     use super::*;
-
-    /// The test kit's xorshift64 stream from `seed`, uniform in [0, 1).
-    fn rng(seed: u64) -> impl FnMut() -> f64 {
-        let mut s = seed | 1;
-        move || testkit::rng::unit_from_bits(testkit::rng::xorshift64(&mut s))
-    }
+    use crate::testing::{grid_rounds, unit_rng};
 
     /// Exhaustive: does any triangulation of 0..n use only valid triangles?
     fn brute(points: &[Point], i: usize, j: usize) -> bool {
@@ -371,27 +366,20 @@ mod tests {
 
     #[test]
     fn dp_agrees_with_recursion_including_degenerate_inputs() {
-        let mut r = rng(11);
-        let (mut pos, mut neg) = (0, 0);
-        for round in 0..3000 {
-            let n = 3 + (r() * 8.0) as usize;
-            let g = if round % 3 == 0 { 3.0 } else { 1000.0 };
-            let pts: Vec<Point> = (0..n)
-                .map(|_| Point::new((r() * g).floor(), (r() * g).floor()))
-                .collect();
+        let (pos, neg) = grid_rounds(11, 3000, (3, 8.0), (3, 3.0), |n, point| {
+            let pts: Vec<Point> = (0..n).map(|_| point()).collect();
             let table = dp::decide(&pts, &mut |_| {});
             let expect = brute(&pts, 0, n - 1);
             assert_eq!(table.get(0, n - 1), expect, "{pts:?}");
             let w = dp::witness(&pts, &table);
             assert_eq!(w.is_some(), expect);
-            if let Some(mut t) = w {
-                t.sort_unstable();
-                assert_eq!(check(&pts, &t), Ok(()), "{pts:?}");
-                pos += 1;
-            } else {
-                neg += 1;
-            }
-        }
+            let Some(mut t) = w else {
+                return Some(false);
+            };
+            t.sort_unstable();
+            assert_eq!(check(&pts, &t), Ok(()), "{pts:?}");
+            Some(true)
+        });
         assert!(pos > 200 && neg > 200, "{pos} {neg}");
     }
 
@@ -409,16 +397,8 @@ mod tests {
 
     #[test]
     fn common_triangulation_agrees_with_exhaustive_search() {
-        let mut r = rng(29);
-        let (mut pos, mut neg) = (0, 0);
-        for round in 0..20000 {
-            let n = 4 + (r() * 7.0) as usize;
-            let g = if round % 3 == 0 { 3.0 } else { 1000.0 };
-            let mut curve = || -> Vec<Point> {
-                (0..n)
-                    .map(|_| Point::new((r() * g).floor(), (r() * g).floor()))
-                    .collect()
-            };
+        let (pos, neg) = grid_rounds(29, 20000, (4, 7.0), (3, 3.0), |n, point| {
+            let mut curve = || -> Vec<Point> { (0..n).map(|_| point()).collect() };
             let (a, b) = (curve(), curve());
             // Only pairs where each curve alone is an immersed disk ask the
             // common question (others are refused before the DP).
@@ -427,20 +407,19 @@ mod tests {
                 || precheck(&a).is_err()
                 || precheck(&b).is_err()
             {
-                continue;
+                return None;
             }
             let curves = [&a[..], &b[..]];
             let expect = brute_common(&curves, 0, n - 1);
             let got = common_triangulation(&curves);
             assert_eq!(got.is_some(), expect, "{a:?} {b:?}");
-            if let Some(t) = got {
-                assert_eq!(check(&a, &t), Ok(()), "{a:?}");
-                assert_eq!(check(&b, &t), Ok(()), "{b:?}");
-                pos += 1;
-            } else {
-                neg += 1;
-            }
-        }
+            let Some(t) = got else {
+                return Some(false);
+            };
+            assert_eq!(check(&a, &t), Ok(()), "{a:?}");
+            assert_eq!(check(&b, &t), Ok(()), "{b:?}");
+            Some(true)
+        });
         assert!(pos > 20 && neg > 20, "{pos} {neg}");
     }
 
@@ -448,7 +427,7 @@ mod tests {
     fn every_cell_agrees_with_a_naive_dp_across_words() {
         // A noisy spiral strip with n > 128: many true and false cells, rows
         // and columns spanning several words.
-        let mut r = rng(3);
+        let mut r = unit_rng(3);
         let n = 140;
         let half = n / 2;
         let at = |i: usize, r0: f64| {

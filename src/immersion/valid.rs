@@ -378,6 +378,27 @@ mod tests {
             && is_fan_order_less(p(c), next(c), p(a), p(b))
     }
 
+    /// Asserts that [`is_valid_triangle`] and the corner masks of `hp`
+    /// (k's bit in the corners of i and j, neither end without a
+    /// reference direction) answer for the triangle (i, k, j) as
+    /// [`by_fan_order`]; returns that answer.
+    fn agrees_with_the_definition(
+        pts: &[Point],
+        hp: &HalfPlanes,
+        i: usize,
+        k: usize,
+        j: usize,
+    ) -> bool {
+        let exact = by_fan_order(pts, i, k, j);
+        assert_eq!(is_valid_triangle(pts, i, k, j), exact, "i={i} j={j} k={k}");
+        let bit = orient(pts[i], pts[k], pts[j]).is_ccw()
+            && !hp.bad_flags[i]
+            && !hp.bad_flags[j]
+            && hp.corners(i, j).word(k / 64) >> (k % 64) & 1 == 1;
+        assert_eq!(bit, exact, "i={i} j={j} k={k}");
+        exact
+    }
+
     #[test]
     fn masks_agree_with_the_definition() {
         // Small integer grids: many collinear and coincident points.
@@ -404,18 +425,8 @@ mod tests {
             for i in 0..n {
                 for j in i + 1..n {
                     for k in i + 1..j {
-                        let exact = by_fan_order(&pts, i, k, j);
-                        assert_eq!(
-                            is_valid_triangle(&pts, i, k, j),
-                            exact,
-                            "{pts:?} {i} {k} {j}"
-                        );
+                        let exact = agrees_with_the_definition(&pts, &hp, i, k, j);
                         assert_eq!(hp.is_valid(&pts, i, k, j), exact, "{pts:?} {i} {k} {j}");
-                        let bit = orient(pts[i], pts[k], pts[j]).is_ccw()
-                            && !hp.bad_flags[i]
-                            && !hp.bad_flags[j]
-                            && hp.corners(i, j).word(k / 64) >> (k % 64) & 1 == 1;
-                        assert_eq!(bit, exact, "{pts:?} {i} {k} {j}");
                     }
                 }
             }
@@ -441,13 +452,7 @@ mod tests {
             for i in [0, 1, 62, 63, 64, 65, 100, 127, 128, 140] {
                 for j in i + 2..n {
                     for k in i + 1..j {
-                        let exact = by_fan_order(&pts, i, k, j);
-                        assert_eq!(is_valid_triangle(&pts, i, k, j), exact, "i={i} j={j} k={k}");
-                        let bit = orient(pts[i], pts[k], pts[j]).is_ccw()
-                            && !hp.bad_flags[i]
-                            && !hp.bad_flags[j]
-                            && hp.corners(i, j).word(k / 64) >> (k % 64) & 1 == 1;
-                        assert_eq!(bit, exact, "i={i} j={j} k={k}");
+                        agrees_with_the_definition(&pts, &hp, i, k, j);
                     }
                 }
             }

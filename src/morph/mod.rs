@@ -64,23 +64,14 @@ impl MorphOptions {
         fan_margin: DEFAULT_FAN_MARGIN,
         rivals: true,
     };
-
-    /// Sets the third-vertex path.
-    pub fn with_path(mut self, path: ThirdVertexPath) -> Self {
-        self.path = path;
-        self
-    }
-
-    /// Sets the fan margin ε.
-    pub fn with_fan_margin(mut self, eps: f64) -> Self {
-        self.fan_margin = eps;
-        self
-    }
 }
 
-impl Default for MorphOptions {
-    fn default() -> Self {
-        MorphOptions::DEFAULT
+crate::options::setters! {
+    MorphOptions: Default {
+        /// Sets the third-vertex path.
+        fn with_path(path: ThirdVertexPath);
+        /// Sets the fan margin ε.
+        fn with_fan_margin(fan_margin: f64);
     }
 }
 

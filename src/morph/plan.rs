@@ -6,6 +6,8 @@ use crate::flip::sequence::crossings_per_shift;
 use crate::geom::Point;
 use crate::geom::polygon::min_triangle_angle as min_angle;
 use crate::immersion::NotSelfOverlapping;
+#[cfg(feature = "cli")]
+use crate::morph::propagate::paths::HIDE_EXPERIMENTAL;
 use crate::morph::staged::{Limit, Peak, SideInput};
 use crate::morph::{Fallback, Morph};
 use crate::morph::{MorphError, MorphOptions, Staged, ThirdVertexPath};
@@ -77,13 +79,6 @@ impl CurveMorphOptions {
         key_tolerance: KEY_TOLERANCE,
     };
 
-    /// Sets the key tolerance (a fraction of the diagonal; checked when the
-    /// morph is planned).
-    pub fn with_key_tolerance(mut self, tolerance: f64) -> Self {
-        self.key_tolerance = tolerance;
-        self
-    }
-
     /// Checks the options that are numbers.
     ///
     /// # Errors
@@ -98,41 +93,23 @@ impl CurveMorphOptions {
             Err(CurveMorphError::KeyTolerance(k))
         }
     }
-
-    /// Sets the triangulation quality.
-    pub fn with_quality(mut self, quality: Quality) -> Self {
-        self.quality = quality;
-        self
-    }
-
-    /// Sets the morph options.
-    pub fn with_morph(mut self, morph: MorphOptions) -> Self {
-        self.morph = morph;
-        self
-    }
-
-    /// Sets the intermediate of incompatible morphs.
-    pub fn with_intermediate(mut self, intermediate: Intermediate) -> Self {
-        self.intermediate = intermediate;
-        self
-    }
-
-    /// Sets the correspondence rule.
-    pub fn with_correspondence(mut self, correspondence: Correspondence) -> Self {
-        self.correspondence = correspondence;
-        self
-    }
-
-    /// Sets how vertex counts are equalised.
-    pub fn with_counts(mut self, counts: Counts) -> Self {
-        self.counts = counts;
-        self
-    }
 }
 
-impl Default for CurveMorphOptions {
-    fn default() -> Self {
-        CurveMorphOptions::DEFAULT
+crate::options::setters! {
+    CurveMorphOptions: Default {
+        /// Sets the key tolerance (a fraction of the diagonal; checked when the
+        /// morph is planned).
+        fn with_key_tolerance(key_tolerance: f64);
+        /// Sets the triangulation quality.
+        fn with_quality(quality: Quality);
+        /// Sets the morph options.
+        fn with_morph(morph: MorphOptions);
+        /// Sets the intermediate of incompatible morphs.
+        fn with_intermediate(intermediate: Intermediate);
+        /// Sets the correspondence rule.
+        fn with_correspondence(correspondence: Correspondence);
+        /// Sets how vertex counts are equalised.
+        fn with_counts(counts: Counts);
     }
 }
 
@@ -255,10 +232,7 @@ pub enum Correspondence {
     /// rotation, scale and translation), with the inserted vertices placed
     /// where the other curve's vertices are (original vertices stay
     /// exact). What the user sees corresponds.
-    #[cfg_attr(
-        all(feature = "cli", not(feature = "experimental")),
-        value(hide = true)
-    )]
+    #[cfg_attr(feature = "cli", value(hide = HIDE_EXPERIMENTAL))]
     Outline,
     /// As outline, with the curves' corners (turns of 60° or more, else rounded
     /// caps: 160° within 3% of the perimeter) matched in order and the arc
@@ -277,25 +251,16 @@ pub enum Correspondence {
     MinFlips,
     /// Match the pivot vertices of the two triangulations (Mukherjee & Gopi
     /// §6.1).
-    #[cfg_attr(
-        all(feature = "cli", not(feature = "experimental")),
-        value(hide = true)
-    )]
+    #[cfg_attr(feature = "cli", value(hide = HIDE_EXPERIMENTAL))]
     Pivot,
     /// The cyclic shift that best matches the shapes themselves.
     ///
     /// The least sum of squared distances between matched vertices after
     /// normalising position and size.
-    #[cfg_attr(
-        all(feature = "cli", not(feature = "experimental")),
-        value(hide = true)
-    )]
+    #[cfg_attr(feature = "cli", value(hide = HIDE_EXPERIMENTAL))]
     Shape,
     /// Vertex 0 matches vertex 0.
-    #[cfg_attr(
-        all(feature = "cli", not(feature = "experimental")),
-        value(hide = true)
-    )]
+    #[cfg_attr(feature = "cli", value(hide = HIDE_EXPERIMENTAL))]
     Identity,
     /// Plan with the outline, min-flips and (when the corners match up) corners
     /// rules; keep the one whose vertices travel less.

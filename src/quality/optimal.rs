@@ -190,14 +190,11 @@ pub(crate) fn maxmin(
 mod tests {
     use super::*;
     use crate::geom::polygon::triangle_angles;
+    use crate::testing::{points, regular_polygon};
 
     #[test]
     fn sin2_matches_angles() {
-        let (a, b, c) = (
-            Point::new(0.0, 0.0),
-            Point::new(3.0, 0.2),
-            Point::new(1.0, 2.0),
-        );
+        let [a, b, c] = points([(0.0, 0.0), (3.0, 0.2), (1.0, 2.0)]);
         let m = triangle_angles(a, b, c)
             .into_iter()
             .fold(f64::INFINITY, f64::min);
@@ -206,12 +203,7 @@ mod tests {
 
     #[test]
     fn regular_polygon_is_triangulated() {
-        let pts: Vec<Point> = (0..9)
-            .map(|i| {
-                let a = i as f64 * std::f64::consts::TAU / 9.0;
-                Point::new(a.cos(), a.sin())
-            })
-            .collect();
+        let pts = regular_polygon(9);
         let t = maxmin(&pts, u64::MAX, &mut |_| {}).expect("convex");
         assert_eq!(crate::immersion::check(&pts, &t), Ok(()));
     }
@@ -221,12 +213,7 @@ mod tests {
         // A convex n-gon: every chord is feasible and every apex a
         // candidate, C(n, 3) triangles in all.
         let n = 40;
-        let pts: Vec<Point> = (0..n)
-            .map(|i| {
-                let a = i as f64 * std::f64::consts::TAU / n as f64;
-                Point::new(a.cos(), a.sin())
-            })
-            .collect();
+        let pts = regular_polygon(n);
         let table = decide(&pts, &mut |_| {});
         let all = (n * (n - 1) * (n - 2) / 6) as u64;
         assert_eq!(candidate_count(&table, n), all);

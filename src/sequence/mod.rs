@@ -137,23 +137,14 @@ impl SequenceOptions {
         morph: CurveMorphOptions::DEFAULT,
         hint_tolerance: 0.02,
     };
-
-    /// Sets the morph options.
-    pub fn with_morph(mut self, morph: CurveMorphOptions) -> Self {
-        self.morph = morph;
-        self
-    }
-
-    /// Sets the hint tolerance.
-    pub fn with_hint_tolerance(mut self, tolerance: f64) -> Self {
-        self.hint_tolerance = tolerance;
-        self
-    }
 }
 
-impl Default for SequenceOptions {
-    fn default() -> Self {
-        SequenceOptions::DEFAULT
+crate::options::setters! {
+    SequenceOptions: Default {
+        /// Sets the morph options.
+        fn with_morph(morph: CurveMorphOptions);
+        /// Sets the hint tolerance.
+        fn with_hint_tolerance(hint_tolerance: f64);
     }
 }
 

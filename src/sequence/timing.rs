@@ -130,17 +130,14 @@ impl Timing {
             keys: vec![KeyTiming::default(); keys],
         }
     }
+}
 
-    /// Sets the total frame count.
-    pub fn with_frames(mut self, frames: Option<usize>) -> Timing {
-        self.frames = frames;
-        self
-    }
-
-    /// Sets the frame rate.
-    pub fn with_fps(mut self, fps: f64) -> Timing {
-        self.fps = fps;
-        self
+crate::options::setters! {
+    Timing {
+        /// Sets the total frame count.
+        fn with_frames(frames: Option<usize>);
+        /// Sets the frame rate.
+        fn with_fps(fps: f64);
     }
 }
 

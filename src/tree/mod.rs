@@ -333,6 +333,7 @@ pub(crate) fn disk_positions(points: &[Point]) -> Vec<Point> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testing::points;
 
     /// Fan triangulation of an n-gon from vertex 0.
     pub(crate) fn fan(n: u32) -> Vec<[u32; 3]> {
@@ -343,13 +344,7 @@ mod tests {
     fn disk_positions_never_coincide_even_for_a_tiny_edge() {
         // A square with one edge 1e-13 of the perimeter: spacing by edge
         // length alone rounds its two disk points together.
-        let pts = vec![
-            Point::new(0.0, 0.0),
-            Point::new(1.0, 0.0),
-            Point::new(1.0, 1.0),
-            Point::new(0.0, 1.0),
-            Point::new(0.0, 4e-13),
-        ];
+        let pts = points([(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.0, 4e-13)]);
         let d = disk_positions(&pts);
         for i in 0..d.len() {
             for j in i + 1..d.len() {

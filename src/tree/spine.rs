@@ -115,6 +115,7 @@ pub(super) fn spine(tree: &DualTree, points: &[Point]) -> Spine {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testing::regular_polygon;
 
     #[test]
     fn spine_of_a_fan_is_the_whole_path() {
@@ -145,12 +146,7 @@ mod tests {
             [4, 5, 6],
             [6, 7, 0],
         ];
-        let pts: Vec<Point> = (0..8)
-            .map(|i| {
-                let a = i as f64 * std::f64::consts::TAU / 8.0;
-                Point::new(a.cos(), a.sin())
-            })
-            .collect();
+        let pts = regular_polygon(8);
         let tree = DualTree::new(8, &tris).unwrap();
         let s = tree.spine(&pts);
         assert_eq!(s.triangles.len(), 5, "{s:?}");

@@ -344,22 +344,9 @@ pub(crate) struct MeshMorphArgs {
     /// Only report whether the linear morph is valid (exact test on every star).
     #[arg(long)]
     pub(crate) check_linear: bool,
-    /// Write the frames as JSON to FILE; bare --json, "-" or /dev/stdout
-    /// print it on stdout.
-    #[arg(long, value_name = "FILE", num_args = 0..=1, default_missing_value = "-")]
-    pub(crate) json: Option<PathBuf>,
-    /// Write images (see `immerse morph --help`): a folder (no extension,
-    /// or ending in /) of PNG or SVG frames, or a .gif, .svg (animated) or
-    /// .png (contact sheet) file; "-" is stdout with --format.
-    #[arg(short, long, value_name = "PATH")]
-    pub(crate) output: Option<PathBuf>,
-    /// Image format; by default from the -o extension (.gif, .svg animated,
-    /// .png sheet), PNG frames for a folder.
-    #[arg(long, value_enum)]
-    pub(crate) format: Option<FormatArg>,
-    /// The images' grid, size and speed.
+    /// The frames as JSON and as images.
     #[command(flatten)]
-    pub(crate) image: ImageArgs,
+    pub(crate) out: OutputArgs,
     /// Replacing outputs and quiet.
     #[command(flatten)]
     pub(crate) run: RunArgs,
@@ -494,24 +481,9 @@ pub(crate) struct MorphArgs {
     /// detour and unwind, also in the JSON) to stdout.
     #[arg(long)]
     pub(crate) metrics: bool,
-    /// Write the frames as JSON to FILE; bare --json, "-" or /dev/stdout
-    /// print it on stdout.
-    #[arg(long, value_name = "FILE", num_args = 0..=1, default_missing_value = "-")]
-    pub(crate) json: Option<PathBuf>,
-    /// Write images: a folder (a path without an extension, or ending in
-    /// /) of PNG or SVG frames, or a .gif, .svg (animated) or .png
-    /// (contact sheet) file; any other extension is refused. "-" writes a
-    /// single-file format to stdout (give --format).
-    #[arg(short, long, value_name = "PATH")]
-    pub(crate) output: Option<PathBuf>,
-    /// Image format; by default taken from the -o extension (.gif, .svg
-    /// for animated SVG, .png for a contact sheet) and png frames for a
-    /// folder.
-    #[arg(long, value_enum)]
-    pub(crate) format: Option<FormatArg>,
-    /// The images' grid, size and speed.
+    /// The frames as JSON and as images.
     #[command(flatten)]
-    pub(crate) image: ImageArgs,
+    pub(crate) out: OutputArgs,
     /// How the animation plays and what images draw.
     #[command(flatten)]
     pub(crate) play: PlayArgs,
@@ -535,6 +507,30 @@ pub(crate) struct MotionArgs {
     /// at most 0.1); smaller gives more keys.
     #[arg(long, value_name = "FRACTION", default_value_t = immerse::morph::KEY_TOLERANCE, value_parser = key_tolerance, allow_negative_numbers = true)]
     pub(crate) key_tolerance: f64,
+}
+
+/// The outputs that `morph` and `mesh-morph` share: the frames as JSON,
+/// and as images in a format, grid, size and speed.
+#[derive(Debug, Args)]
+pub(crate) struct OutputArgs {
+    /// Write the frames as JSON to FILE; bare --json, "-" or /dev/stdout
+    /// print it on stdout.
+    #[arg(long, value_name = "FILE", num_args = 0..=1, default_missing_value = "-")]
+    pub(crate) json: Option<PathBuf>,
+    /// Write images: a folder (a path without an extension, or ending in
+    /// /) of PNG or SVG frames, or a .gif, .svg (animated) or .png
+    /// (contact sheet) file; any other extension is refused. "-" writes a
+    /// single-file format to stdout (give --format).
+    #[arg(short, long, value_name = "PATH")]
+    pub(crate) output: Option<PathBuf>,
+    /// Image format; by default taken from the -o extension (.gif, .svg
+    /// for animated SVG, .png for a contact sheet) and png frames for a
+    /// folder.
+    #[arg(long, value_enum)]
+    pub(crate) format: Option<FormatArg>,
+    /// The images' grid, size and speed.
+    #[command(flatten)]
+    pub(crate) image: ImageArgs,
 }
 
 /// The image flags that `morph` and `mesh-morph` share: a contact
@@ -656,12 +652,12 @@ mod tests {
         let Command::Morph(m) = cli.command else {
             panic!("not morph")
         };
-        assert_eq!(m.json, Some("m.json".into()));
+        assert_eq!(m.out.json, Some("m.json".into()));
         let cli = Cli::try_parse_from(["immerse", "morph", "a", "b", "--json", "-q"]).unwrap();
         let Command::Morph(m) = cli.command else {
             panic!("not morph")
         };
-        assert_eq!(m.json, Some("-".into()));
+        assert_eq!(m.out.json, Some("-".into()));
         assert!(m.run.quiet);
     }
 
@@ -741,7 +737,7 @@ mod tests {
             panic!("not mesh-morph")
         };
         assert_eq!(
-            (m.image.size, m.image.fps, m.run.quiet),
+            (m.out.image.size, m.out.image.fps, m.run.quiet),
             ((30, 20), 12.0, true)
         );
     }
@@ -798,7 +794,7 @@ mod tests {
         };
         assert_eq!(m.frames, 60);
         assert_eq!(m.motion.path, ThirdVertexPath::Rigid);
-        assert_eq!(m.image.size, (600, 600));
+        assert_eq!(m.out.image.size, (600, 600));
         assert!(Cli::try_parse_from(["immerse", "morph", "a", "b", "--frames", "1"]).is_err());
         assert_eq!(parse_size("640x480"), Ok((640, 480)));
         assert!(parse_size("0x480").is_err());

@@ -1381,18 +1381,33 @@ pub(crate) mod tests {
             .collect()
     }
 
-    /// A random compatible pair: `min + ⌊u·span⌋` vertices (u uniform in
-    /// [0, 1)), a random triangulation, and two random immersed disks
-    /// under it (curl 3).
+    /// A random triangulated polygon: `min + ⌊u·span⌋` vertices (u
+    /// uniform in [0, 1)) and a random triangulation of them.
+    pub(crate) fn random_polygon(rng: &mut Rng, min: usize, span: f64) -> (usize, Vec<[u32; 3]>) {
+        let n = min + (rng.next() * span) as usize;
+        (n, random_triangulation(n as u32, rng))
+    }
+
+    /// A random compatible pair: a [`random_polygon`] and two random
+    /// immersed disks under its triangulation (curl 3).
     pub(crate) fn random_pair(
         rng: &mut Rng,
         min: usize,
         span: f64,
     ) -> (usize, Vec<[u32; 3]>, Vec<Point>, Vec<Point>) {
-        let n = min + (rng.next() * span) as usize;
-        let tris = random_triangulation(n as u32, rng);
-        let a = random_immersed_disk(n, &tris, 3.0, rng);
-        let b = random_immersed_disk(n, &tris, 3.0, rng);
+        random_curled_pair(rng, min, span, 3.0)
+    }
+
+    /// [`random_pair`] with the disks' `curl`.
+    fn random_curled_pair(
+        rng: &mut Rng,
+        min: usize,
+        span: f64,
+        curl: f64,
+    ) -> (usize, Vec<[u32; 3]>, Vec<Point>, Vec<Point>) {
+        let (n, tris) = random_polygon(rng, min, span);
+        let a = random_immersed_disk(n, &tris, curl, rng);
+        let b = random_immersed_disk(n, &tris, curl, rng);
         (n, tris, a, b)
     }
 
@@ -1446,10 +1461,7 @@ pub(crate) mod tests {
         let mut self_intersecting = 0;
         let cases = 60;
         for case in 0..cases {
-            let n = 5 + (rng.next() * 40.0) as usize;
-            let tris = random_triangulation(n as u32, &mut rng);
-            let a = random_immersed_disk(n, &tris, 6.0, &mut rng);
-            let mut b = random_immersed_disk(n, &tris, 6.0, &mut rng);
+            let (n, tris, a, mut b) = random_curled_pair(&mut rng, 5, 40.0, 6.0);
             // A large rotation, a scale and a shift of the target.
             let rot = Point::from_angle(rng.next() * TAU) * (0.3 + 3.0 * rng.next());
             let shift = Point::new(rng.next() * 10.0, rng.next() * 10.0);
@@ -1538,10 +1550,7 @@ pub(crate) mod tests {
         let times: Vec<f64> = (0..=100).map(|i| i as f64 / 100.0).collect();
         let (mut cases, mut fell) = (0, [0, 0]);
         for _ in 0..200 {
-            let n = 8 + (rng.next() * 40.0) as usize;
-            let tris = random_triangulation(n as u32, &mut rng);
-            let a = random_immersed_disk(n, &tris, 6.0, &mut rng);
-            let b = random_immersed_disk(n, &tris, 6.0, &mut rng);
+            let (_, tris, a, b) = random_curled_pair(&mut rng, 8, 40.0, 6.0);
             cases += 1;
             for (k, path) in [ThirdVertexPath::Linear, ThirdVertexPath::RotateSlide]
                 .into_iter()
@@ -1767,10 +1776,8 @@ pub(crate) mod tests {
         let mut rng = Rng(0x6a09e667f3bcc908);
         let mut unclamped = 0;
         for case in 0..30 {
-            let n = 6 + (rng.next() * 30.0) as usize;
-            let tris = random_triangulation(n as u32, &mut rng);
-            let a = random_immersed_disk(n, &tris, 3.0, &mut rng);
-            let b: Vec<Point> = random_immersed_disk(n, &tris, 3.0, &mut rng)
+            let (_, tris, a, b) = random_pair(&mut rng, 6, 30.0);
+            let b: Vec<Point> = b
                 .iter()
                 .map(|p| Point::from_angle(2.0).rotate(*p) * 1.7 + Point::new(3.0, -1.0))
                 .collect();
@@ -1968,8 +1975,7 @@ pub(crate) mod tests {
         let mut rng = Rng(0x5742a16);
         let mut checked = 0;
         for _ in 0..40 {
-            let n = 6 + (rng.next() * 30.0) as usize;
-            let tris = random_triangulation(n as u32, &mut rng);
+            let (n, tris) = random_polygon(&mut rng, 6, 30.0);
             let a = random_immersed_disk(n, &tris, 1.0, &mut rng);
             let diag = bbox_diag(&a);
             let b: Vec<Point> = a

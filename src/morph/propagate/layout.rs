@@ -191,15 +191,12 @@ pub(crate) fn lerp3(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testing::points;
     use crate::tree::DualTree;
 
     #[test]
     fn similarity_fit_recovers_a_similarity() {
-        let p = vec![
-            Point::new(0.0, 0.0),
-            Point::new(2.0, 0.0),
-            Point::new(1.0, 3.0),
-        ];
+        let p = points([(0.0, 0.0), (2.0, 0.0), (1.0, 3.0)]);
         let a = Point::new(0.6, -1.7);
         let q: Vec<Point> = p
             .iter()

@@ -7,6 +7,12 @@
 use crate::geom::Point;
 use std::f64::consts::PI;
 
+/// Whether the command line hides the experimental paths and
+/// correspondences (from its help and its list of values): unless built
+/// with the `experimental` feature.
+#[cfg(feature = "cli")]
+pub(crate) const HIDE_EXPERIMENTAL: bool = !cfg!(feature = "experimental");
+
 /// How each triangle's third vertex travels from its source to its target
 /// position relative to its base. With the `cli` feature it is the command
 /// line's `--path`, variants in its order (each variant's first doc
@@ -50,38 +56,26 @@ pub enum ThirdVertexPath {
     /// own turns instead of cutting across them. An immersion for every t.
     /// The default path tries it on the last leg where `hybrid` travels
     /// less than `straight`, and keeps the one whose vertices travel least.
-    #[cfg_attr(
-        all(feature = "cli", not(feature = "experimental")),
-        value(hide = true)
-    )]
+    #[cfg_attr(feature = "cli", value(hide = HIDE_EXPERIMENTAL))]
     Polar,
     /// Linear interpolation of triangle angles (guaranteed, more distortion).
     ///
     /// The triangles are laid out from their interpolated angles: an
     /// immersion for every t.
-    #[cfg_attr(
-        all(feature = "cli", not(feature = "experimental")),
-        value(hide = true)
-    )]
+    #[cfg_attr(feature = "cli", value(hide = HIDE_EXPERIMENTAL))]
     Angle,
     /// The paper's rotate-and-slide path (checked; falls back to hybrid).
     ///
     /// Mukherjee & Gopi's path (their Fig. 7): keep the length of a
     /// propagation edge monotone. Not guaranteed: it may fold the shape
     /// (detected, then `hybrid` is used instead).
-    #[cfg_attr(
-        all(feature = "cli", not(feature = "experimental")),
-        value(hide = true)
-    )]
+    #[cfg_attr(feature = "cli", value(hide = HIDE_EXPERIMENTAL))]
     RotateSlide,
     /// Linear base-relative coordinates (checked; falls back to hybrid).
     ///
     /// Not guaranteed either: it may fold the shape on strong deformations
     /// (detected, then `hybrid` is used instead).
-    #[cfg_attr(
-        all(feature = "cli", not(feature = "experimental")),
-        value(hide = true)
-    )]
+    #[cfg_attr(feature = "cli", value(hide = HIDE_EXPERIMENTAL))]
     Linear,
 }
 
@@ -373,14 +367,11 @@ pub(crate) fn base_frame_angles(c: Point) -> Option<[f64; 3]> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testing::points;
 
     #[test]
     fn base_frame_round_trip() {
-        let (x, y, w) = (
-            Point::new(1.0, 2.0),
-            Point::new(4.0, 6.0),
-            Point::new(-1.0, 5.0),
-        );
+        let [x, y, w] = points([(1.0, 2.0), (4.0, 6.0), (-1.0, 5.0)]);
         let c = to_base_frame(x, y, w);
         assert!((from_base_frame(x, y, c) - w).length() < 1e-12);
         assert!(c.y > 0.0);
@@ -421,47 +412,59 @@ mod tests {
         assert!(matches!(plan, RotateSlide::Line { .. }));
     }
 
-    #[test]
-    fn path_names_round_trip() {
-        for p in ThirdVertexPath::ALL {
-            let parsed = p.as_str().parse::<ThirdVertexPath>();
-            if cfg!(feature = "experimental") || !p.is_experimental() {
-                assert_eq!(parsed, Ok(p));
+    /// Every value of `all` parses back from its name when this build
+    /// offers it (`offered`: 3 values, all 7 with the `experimental`
+    /// feature), else is refused naming `names`, the values offered;
+    /// `unknown` is refused.
+    fn names_round_trip<T>(
+        all: &[T],
+        name: fn(T) -> &'static str,
+        is_experimental: fn(T) -> bool,
+        offered: &[T],
+        names: &str,
+        unknown: &str,
+    ) where
+        T: Copy + PartialEq + std::fmt::Debug + std::str::FromStr<Err = String>,
+    {
+        for &v in all {
+            let parsed = name(v).parse::<T>();
+            if cfg!(feature = "experimental") || !is_experimental(v) {
+                assert_eq!(parsed, Ok(v));
             } else {
-                // Refused, naming the offered paths.
+                // Refused, naming the offered values.
                 let e = parsed.unwrap_err();
-                assert!(
-                    e.contains("experimental") && e.contains("rigid, hybrid, straight"),
-                    "{e}"
-                );
+                assert!(e.contains("experimental") && e.contains(names), "{e}");
             }
         }
         assert_eq!(
-            ThirdVertexPath::offered().len(),
+            offered.len(),
             if cfg!(feature = "experimental") { 7 } else { 3 }
         );
-        assert!("spline".parse::<ThirdVertexPath>().is_err());
+        assert!(unknown.parse::<T>().is_err());
+    }
+
+    #[test]
+    fn path_names_round_trip() {
+        names_round_trip(
+            &ThirdVertexPath::ALL,
+            ThirdVertexPath::as_str,
+            ThirdVertexPath::is_experimental,
+            &ThirdVertexPath::offered(),
+            "rigid, hybrid, straight",
+            "spline",
+        );
     }
 
     #[test]
     fn correspondence_names_round_trip() {
         use crate::morph::Correspondence;
-        for c in Correspondence::ALL {
-            let parsed = c.as_str().parse::<Correspondence>();
-            if cfg!(feature = "experimental") || !c.is_experimental() {
-                assert_eq!(parsed, Ok(c));
-            } else {
-                let e = parsed.unwrap_err();
-                assert!(
-                    e.contains("experimental") && e.contains("corners, min-flips, best"),
-                    "{e}"
-                );
-            }
-        }
-        assert_eq!(
-            Correspondence::offered().len(),
-            if cfg!(feature = "experimental") { 7 } else { 3 }
+        names_round_trip(
+            &Correspondence::ALL,
+            Correspondence::as_str,
+            Correspondence::is_experimental,
+            &Correspondence::offered(),
+            "corners, min-flips, best",
+            "nearest",
         );
-        assert!("nearest".parse::<Correspondence>().is_err());
     }
 }

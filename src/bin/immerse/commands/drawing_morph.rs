@@ -91,7 +91,7 @@ pub(crate) fn run(
         .map(|&t| tween.frame(t))
         .collect::<Result<Vec<_>, _>>()?;
     let elapsed = start.elapsed();
-    if let Some(json) = &args.json {
+    if let Some(json) = &args.out.json {
         let report = DrawingMorphJson {
             matching: report(&a, &b, &matching),
             notices,
@@ -100,7 +100,7 @@ pub(crate) fn run(
         };
         super::write_json(json, &report, false, args.run.force)?;
     }
-    if let (Some(out), Some(images)) = (&args.output, images) {
+    if let (Some(out), Some(images)) = (&args.out.output, images) {
         let rendered: Vec<render::Frame> = frames.iter().map(render_frame).collect();
         let samples: Vec<(usize, f64)> = times.iter().map(|&t| (0, t)).collect();
         let writing = super::write::writing(args);
@@ -313,14 +313,7 @@ fn paint(s: &Style) -> render::Paint {
 /// # Errors
 ///
 /// As [`keyed::write_certified`].
-pub(crate) fn write_keyed(
-    kind: Kind,
-    play: &DrawingPlay,
-    view: render::View,
-    style: &render::Style,
-    fps: f64,
-    looping: render::Loop,
-) -> anyhow::Result<Written> {
+pub(crate) fn write_keyed(doc: keyed::Document<'_>, play: &DrawingPlay) -> anyhow::Result<Written> {
     let shapes: Vec<Vec<Vec<render::Frame>>> = per_track(play, |t| {
         t.keys
             .iter()
@@ -361,7 +354,7 @@ pub(crate) fn write_keyed(
     let mut outlines = Vec::new();
     for scene in &play.scenes {
         let mut tracks: Vec<&ShapeTrack> = scene.tracks.iter().collect();
-        if kind == Kind::Lottie {
+        if doc.kind == Kind::Lottie {
             tracks.reverse();
         }
         outlines.extend(tracks.into_iter().map(|t| Outline {
@@ -369,17 +362,11 @@ pub(crate) fn write_keyed(
             keys: &t.keys,
         }));
     }
-    let mut written = keyed::write_certified(kind, &outlines, |digits| {
-        let keys = render::DrawingKeys {
-            scenes: &scenes,
-            frames: play.frames,
-            view,
-            digits,
-        };
-        match kind {
-            Kind::Lottie => render::lottie_drawing(&keys, style, fps),
-            Kind::AnimatedSvg => render::animated_svg_drawing(&keys, style, fps, looping),
-        }
+    let mut written = keyed::write_certified(doc, &outlines, |digits| render::DrawingKeys {
+        scenes: &scenes,
+        frames: play.frames,
+        view: doc.view,
+        digits,
     })?;
     // Keys per shape in painting order.
     written.per_shape = play
@@ -413,20 +400,7 @@ pub(crate) fn write_images(
         FormatArg::AnimatedSvg => Kind::AnimatedSvg,
         _ => return super::write::write_frames(frames, None, out, images, writing),
     };
-    let Writing {
-        ref style,
-        fps,
-        looping,
-        ..
-    } = *writing;
-    let view = render::View::fit(frames, style);
-    let written = write_keyed(kind, play, view, style, fps, looping)
-        .with_context(|| format!("-o {}", out.display()))?;
-    keyed::save(&written, out, writing.force)?;
-    if !writing.quiet {
-        output::note(&keyed::describe(kind, &written, written.text.len()));
-    }
-    Ok(())
+    super::write::write_document(kind, frames, out, writing, |doc| write_keyed(doc, play))
 }
 
 pub(crate) fn report(a: &Drawing, b: &Drawing, m: &Matching) -> MatchingReport {

@@ -93,21 +93,25 @@ pub(crate) struct Outline<'a> {
     pub(crate) keys: &'a [Keyframe],
 }
 
-/// The document of `kind` for `played`, in the pixels of `view`, with
-/// the fewest decimals that certify as written.
+/// What a document is and how it draws and plays: its kind, the pixels
+/// of its view, its style, its frame rate and how it loops.
+#[derive(Clone, Copy)]
+pub(crate) struct Document<'a> {
+    pub(crate) kind: Kind,
+    pub(crate) view: render::View,
+    pub(crate) style: &'a render::Style,
+    pub(crate) fps: f64,
+    pub(crate) looping: render::Loop,
+}
+
+/// The document `doc` for `played`, with the fewest decimals that
+/// certify as written.
 ///
 /// # Errors
 ///
 /// A render error, or none of the precisions certified (the message names
 /// the segment and why).
-pub(crate) fn write(
-    kind: Kind,
-    played: &Played,
-    view: render::View,
-    style: &render::Style,
-    fps: f64,
-    looping: render::Loop,
-) -> anyhow::Result<Written> {
+pub(crate) fn write(doc: Document<'_>, played: &Played) -> anyhow::Result<Written> {
     let shapes: Vec<render::Frame> = played
         .keys
         .iter()
@@ -118,23 +122,43 @@ pub(crate) fn write(
         name: "",
         keys: &played.keys,
     }];
-    write_certified(kind, &outline, |digits| {
-        let keys = render::Keys {
-            shapes: &shapes,
-            times: &times,
-            frames: played.frames,
-            view,
-            digits,
-        };
-        match kind {
-            Kind::Lottie => render::lottie_keys(&keys, style, fps),
-            Kind::AnimatedSvg => render::animated_svg_keys(&keys, style, fps, looping),
-        }
+    write_certified(doc, &outline, |digits| render::Keys {
+        shapes: &shapes,
+        times: &times,
+        frames: played.frames,
+        view: doc.view,
+        digits,
     })
 }
 
-/// The document `render` writes with the fewest decimals that certify as
-/// written: read back with the library's reader, its animated outlines
+/// Writes a Lottie file from keys `K`.
+type LottieWriter<K> = fn(&K, &render::Style, f64) -> Result<String, render::RenderError>;
+
+/// Writes an animated SVG from keys `K`.
+type SvgWriter<K> =
+    fn(&K, &render::Style, f64, render::Loop) -> Result<String, render::RenderError>;
+
+/// The keys a document is written from, a curve's or a drawing's, with
+/// their writers.
+pub(crate) trait DocumentKeys: Sized {
+    /// The Lottie writer.
+    const LOTTIE: LottieWriter<Self>;
+    /// The animated SVG writer.
+    const ANIMATED_SVG: SvgWriter<Self>;
+}
+
+impl DocumentKeys for render::Keys<'_> {
+    const LOTTIE: LottieWriter<Self> = render::lottie_keys;
+    const ANIMATED_SVG: SvgWriter<Self> = render::animated_svg_keys;
+}
+
+impl DocumentKeys for render::DrawingKeys<'_> {
+    const LOTTIE: LottieWriter<Self> = render::lottie_drawing;
+    const ANIMATED_SVG: SvgWriter<Self> = render::animated_svg_drawing;
+}
+
+/// The document `doc` of the keys `keys` gives (at the decimals asked)
+/// with the fewest decimals that certify as written: read back with the library's reader, its animated outlines
 /// (in the order of `outlines`, which is the document's) certified
 /// segment by segment with the keys' triangulations.
 ///
@@ -142,11 +166,22 @@ pub(crate) fn write(
 ///
 /// A render error, or none of the precisions certified (the message names
 /// the shape, the segment and why).
-pub(crate) fn write_certified(
-    kind: Kind,
+pub(crate) fn write_certified<K: DocumentKeys>(
+    doc: Document<'_>,
     outlines: &[Outline<'_>],
-    render: impl Fn(Option<u32>) -> Result<String, render::RenderError>,
+    keys: impl Fn(Option<u32>) -> K,
 ) -> anyhow::Result<Written> {
+    let Document {
+        kind,
+        style,
+        fps,
+        looping,
+        ..
+    } = doc;
+    let render = |digits| match kind {
+        Kind::Lottie => K::LOTTIE(&keys(digits), style, fps),
+        Kind::AnimatedSvg => K::ANIMATED_SVG(&keys(digits), style, fps, looping),
+    };
     let mut why = String::new();
     // The fewest decimals that certify with the keys' triangulations,
     // where no precision certifies as `immerse certify` reads the file.

@@ -36,37 +36,25 @@ struct MorphJson<'a> {
 /// The image style of `immerse mesh-morph`.
 fn style(args: &MeshMorphArgs) -> render::Style {
     render::Style::DEFAULT
-        .with_size(args.image.size.0, args.image.size.1)
+        .with_size(args.out.image.size.0, args.out.image.size.1)
         .with_wireframe(true)
 }
 
 pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
-    super::check_fps("--fps", args.image.fps)?;
+    super::check_fps("--fps", args.out.image.fps)?;
     // Every output is checked before any work.
-    let images = match &args.output {
-        Some(out) if !args.check_linear => Some(super::check_images(
-            args.format,
-            out,
-            args.run.force,
-            args.frames as usize,
-            &style(args),
-            args.image.fps,
-            args.image.columns,
-        )?),
-        _ => None,
+    let images = if args.check_linear {
+        None
+    } else {
+        args.out
+            .check_images(args.run.force, args.frames as usize, &style(args))?
     };
-    if let Some(json) = &args.json
+    if let Some(json) = &args.out.json
         && !args.check_linear
     {
         super::check_output_file(json, args.run.force)?;
     }
-    super::one_stdout(&[
-        (
-            "--json",
-            args.json.as_deref().is_some_and(render::is_stdout),
-        ),
-        ("-o", args.output.as_deref().is_some_and(render::is_stdout)),
-    ])?;
+    super::one_stdout(&args.out.on_stdout())?;
     let a = Tiling::from_path(&args.source)?;
     let b = Tiling::from_path(&args.target)?;
     if args.check_linear {
@@ -117,7 +105,7 @@ pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
     busy.finish_and_clear();
     let frames = frames?;
     let invalid = frames.iter().filter(|f| !f.valid).count();
-    if let Some(json) = &args.json {
+    if let Some(json) = &args.out.json {
         let doc = MorphJson {
             method: method.as_str(),
             frames: frames
@@ -132,7 +120,7 @@ pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
         };
         super::write_json(json, &doc, false, args.run.force)?;
     }
-    if let (Some(out), Some(images)) = (&args.output, images) {
+    if let (Some(out), Some(images)) = (&args.out.output, images) {
         let plain: Vec<render::Frame> = frames
             .iter()
             .map(|f| render::Frame {
@@ -144,7 +132,7 @@ pub(crate) fn run(args: &MeshMorphArgs) -> anyhow::Result<Outcome> {
             .collect();
         let writing = Writing {
             style: style(args),
-            fps: args.image.fps,
+            fps: args.out.image.fps,
             looping: render::Loop::Loop,
             force: args.run.force,
             quiet: args.run.quiet,

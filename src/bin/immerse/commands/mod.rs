@@ -14,7 +14,7 @@ mod triangulate;
 mod write;
 
 use crate::Outcome;
-use crate::args::{Cli, Command, FormatArg};
+use crate::args::{Cli, Command, FormatArg, OutputArgs};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{IsTerminal, Write};
@@ -264,6 +264,40 @@ pub(crate) fn image_format(asked: Option<FormatArg>, out: &Path) -> anyhow::Resu
 /// known in advance: the format rule ([`image_format`]), that the file or
 /// folder can be written (`force`), the GIF frame rate, and the size of a
 /// contact sheet of `frames` frames.
+impl OutputArgs {
+    /// The images `-o` asks for, checked before any work ([`check_images`]);
+    /// `None` without `-o`.
+    pub(crate) fn check_images(
+        &self,
+        force: bool,
+        frames: usize,
+        style: &immerse_render::Style,
+    ) -> anyhow::Result<Option<ImageOutput>> {
+        self.output
+            .as_deref()
+            .map(|out| {
+                check_images(
+                    self.format,
+                    out,
+                    force,
+                    frames,
+                    style,
+                    self.image.fps,
+                    self.image.columns,
+                )
+            })
+            .transpose()
+    }
+
+    /// Whether `--json` and `-o` print to standard output, for
+    /// [`one_stdout`].
+    pub(crate) fn on_stdout(&self) -> [(&'static str, bool); 2] {
+        let stdout =
+            |p: &Option<std::path::PathBuf>| p.as_deref().is_some_and(immerse_render::is_stdout);
+        [("--json", stdout(&self.json)), ("-o", stdout(&self.output))]
+    }
+}
+
 pub(crate) fn check_images(
     asked: Option<FormatArg>,
     out: &Path,

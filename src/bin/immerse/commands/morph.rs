@@ -22,33 +22,20 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         .easing
         .parse()
         .with_context(|| format!("--easing '{}'", args.easing))?;
-    super::check_fps("--fps", args.image.fps)?;
+    super::check_fps("--fps", args.out.image.fps)?;
     let options = options(args)?;
     // Every output is checked before any work: nothing is computed for
     // an output that would then be refused.
-    let images = match &args.output {
-        Some(out) => Some(super::check_images(
-            args.format,
-            out,
-            args.run.force,
-            args.frames as usize,
-            &super::write::style(args),
-            args.image.fps,
-            args.image.columns,
-        )?),
-        None => None,
-    };
-    if let Some(json) = &args.json {
+    let images = args.out.check_images(
+        args.run.force,
+        args.frames as usize,
+        &super::write::style(args),
+    )?;
+    if let Some(json) = &args.out.json {
         super::check_output_file(json, args.run.force)?;
     }
-    super::one_stdout(&[
-        (
-            "--json",
-            args.json.as_deref().is_some_and(render::is_stdout),
-        ),
-        ("-o", args.output.as_deref().is_some_and(render::is_stdout)),
-        ("--metrics", args.metrics),
-    ])?;
+    let [json, images_out] = args.out.on_stdout();
+    super::one_stdout(&[json, images_out, ("--metrics", args.metrics)])?;
     let mut clock = Timings::new(args.timings);
     let several = |r: &Result<Curve, immerse::curve::CurveError>| {
         matches!(r, Err(immerse::curve::CurveError::SeveralParts { .. }))
@@ -124,7 +111,7 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         }
     }
     let keyframes = tween.keyframes();
-    if let Some(json) = &args.json {
+    if let Some(json) = &args.out.json {
         super::write_json(
             json,
             &WithKeys::new(&morph, &keyframes),
@@ -133,7 +120,7 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
         )?;
     }
     clock.lap("json");
-    if let (Some(out), Some(images)) = (&args.output, images) {
+    if let (Some(out), Some(images)) = (&args.out.output, images) {
         let played = Played::new(
             &keyframes,
             &times,
@@ -208,7 +195,7 @@ pub(crate) fn run(args: &MorphArgs) -> anyhow::Result<Outcome> {
                 "some segments not certified: frames there checked one by one"
             },
             morph.frames.len(),
-            if args.json.is_none() && args.output.is_none() && !args.metrics {
+            if args.out.json.is_none() && args.out.output.is_none() && !args.metrics {
                 "; pass --json FILE or -o PATH to keep them"
             } else {
                 ""

@@ -33,7 +33,7 @@ impl PlayArgs {
 
 /// The image style of `immerse morph`.
 pub(crate) fn style(args: &MorphArgs) -> render::Style {
-    args.play.style(args.image.size)
+    args.play.style(args.out.image.size)
 }
 
 /// How `immerse morph`'s animations play.
@@ -56,11 +56,36 @@ pub(crate) struct Writing {
 pub(crate) fn writing(args: &MorphArgs) -> Writing {
     Writing {
         style: style(args),
-        fps: args.image.fps,
+        fps: args.out.image.fps,
         looping: looping(args),
         force: args.run.force,
         quiet: args.run.quiet,
     }
+}
+
+/// Writes to `out` the Lottie or animated SVG (`kind`) that `write` makes
+/// of the document, its view fitted to `frames`, as `writing` says; notes
+/// what it holds unless quiet.
+pub(crate) fn write_document(
+    kind: keyed::Kind,
+    frames: &[render::Frame],
+    out: &Path,
+    writing: &Writing,
+    write: impl FnOnce(keyed::Document<'_>) -> anyhow::Result<keyed::Written>,
+) -> anyhow::Result<()> {
+    let doc = keyed::Document {
+        kind,
+        view: render::View::fit(frames, &writing.style),
+        style: &writing.style,
+        fps: writing.fps,
+        looping: writing.looping,
+    };
+    let written = write(doc).with_context(|| format!("-o {}", out.display()))?;
+    keyed::save(&written, out, writing.force)?;
+    if !writing.quiet {
+        output::note(&keyed::describe(kind, &written, written.text.len()));
+    }
+    Ok(())
 }
 
 /// Writes rendered frames to `out` as `images` and `writing` say, with a
@@ -101,13 +126,7 @@ pub(crate) fn write_frames(
                 keyed::Kind::AnimatedSvg
             };
             let played = keys.expect("matched on is_some");
-            let view = render::View::fit(frames, style);
-            let written = keyed::write(kind, played, view, style, fps, looping)
-                .with_context(|| format!("-o {}", out.display()))?;
-            keyed::save(&written, out, force)?;
-            if !quiet {
-                output::note(&keyed::describe(kind, &written, written.text.len()));
-            }
+            write_document(kind, frames, out, writing, |doc| keyed::write(doc, played))?;
         }
         FormatArg::AnimatedSvg => {
             render::write_animated_svg(frames, out, style, fps, looping, &opts)?;

@@ -935,16 +935,16 @@ fn keyed_file(job: &Job, kind: keyed::Kind) -> Result<Vec<u8>, ApiError> {
             .map(String::into_bytes)
             .map_err(|e| ApiError::new(500, format!("{e:#}")));
     }
-    keyed::write(
+    let doc = keyed::Document {
         kind,
-        &job.played,
-        job.view,
-        &job.style,
-        job.fps,
-        job.looping,
-    )
-    .map(|w| w.text.into_bytes())
-    .map_err(|e| ApiError::new(500, format!("{e:#}")))
+        view: job.view,
+        style: &job.style,
+        fps: job.fps,
+        looping: job.looping,
+    };
+    keyed::write(doc, &job.played)
+        .map(|w| w.text.into_bytes())
+        .map_err(|e| ApiError::new(500, format!("{e:#}")))
 }
 
 #[cfg(test)]

@@ -50,16 +50,14 @@ impl CrossingCounter {
         // Second endpoints in [lo2, hi2).
         let mut total = 0;
         let mut i = from;
+        let top = self.levels.len() - 1;
         while i < to {
-            // The largest aligned block starting at i that fits in [i, to).
-            let mut level = 0usize;
-            while level + 1 < self.levels.len() {
-                let w = 1usize << (level + 1);
-                if i % w != 0 || i + w > to {
-                    break;
-                }
-                level += 1;
-            }
+            // The largest aligned block starting at i that fits in [i, to):
+            // 2^level divides i (level ≤ its trailing zeros) and is at most
+            // to − i (level ≤ ⌊log₂(to − i)⌋).
+            let aligned = i.trailing_zeros() as usize; // 64 where i = 0
+            let fits = (to - i).ilog2() as usize;
+            let level = aligned.min(fits).min(top);
             let w = 1usize << level;
             let block = &self.levels[level][i..i + w];
             total += block.partition_point(|&x| x < hi2) - block.partition_point(|&x| x < lo2);

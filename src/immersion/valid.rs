@@ -325,12 +325,15 @@ pub fn is_valid_triangle(points: &[Point], a: usize, b: usize, c: usize) -> bool
     if !(a < b && b < c && c < n) {
         return false;
     }
-    let p = |v: usize| points[v];
-    let next = |v: usize| points[(v + 1) % n];
-    if [a, b, c].iter().any(|&v| p(v) == next(v)) {
+    // Each corner and the vertex after it (index arithmetic without a
+    // division: this runs for every triangle of every checked sample).
+    let next = |v: usize| points[if v + 1 == n { 0 } else { v + 1 }];
+    let (pa, pb, pc) = (points[a], points[b], points[c]);
+    let (qa, qb, qc) = (next(a), next(b), next(c));
+    if pa == qa || pb == qb || pc == qc {
         return false;
     }
-    if !orient(p(a), p(b), p(c)).is_ccw() {
+    if !orient(pa, pb, pc).is_ccw() {
         return false;
     }
     // With the triangle counter-clockwise, the fan order φ_v(u) < φ_v(w)
@@ -338,9 +341,10 @@ pub fn is_valid_triangle(points: &[Point], a: usize, b: usize, c: usize) -> bool
     // v → v+1 and w is not (the masks of the decision DP use the same
     // rule; the tests hold both to the fan-order definition): two exact
     // orientations per corner.
-    let right = |v: usize, x: usize| orient(p(v), next(v), p(x)).is_cw();
-    let fails = |v: usize, u: usize, w: usize| right(v, u) && !right(v, w);
-    !(fails(a, b, c) || fails(b, c, a) || fails(c, a, b))
+    let right = |v: Point, after: Point, x: Point| orient(v, after, x).is_cw();
+    let fails =
+        |v: Point, after: Point, u: Point, w: Point| right(v, after, u) && !right(v, after, w);
+    !(fails(pa, qa, pb, pc) || fails(pb, qb, pc, pa) || fails(pc, qc, pa, pb))
 }
 
 #[cfg(test)]

@@ -96,7 +96,7 @@ pub use repair::certified_triangulation;
 pub(crate) use repair::flip_to_certify;
 
 use crate::geom::Point;
-use crate::immersion::{ImmersionDefect, check, check_structure};
+use crate::immersion::{CheckedTriangles, ImmersionDefect, check, check_structure};
 
 /// The arithmetic a player interpolates with; sets the certificate's margin
 /// (module docs). With the `cli` feature it is the command line's
@@ -384,19 +384,21 @@ pub fn certify_segment(
 /// without the pieces that a margin failure calls for, so a triangle that
 /// the exact motion turns over answers at once; the pieces are tried
 /// last, on those that fail only with the player's margin. False also
-/// for input [`certify_segment`] refuses.
+/// for input [`certify_segment`] refuses. The triangulation's structure
+/// is checked once, by the caller ([`CheckedTriangles`]), however many
+/// segments are certified under it.
 pub(crate) fn segment_holds(
     start: &[Point],
     end: &[Point],
-    triangles: &[[u32; 3]],
+    triangles: &CheckedTriangles<'_>,
     player: Player,
 ) -> bool {
-    if check_input(start, end, 0.0, 1.0).is_err() || check(start, triangles).is_err() {
+    if check_input(start, end, 0.0, 1.0).is_err() || triangles.check(start).is_err() {
         return false;
     }
     let span = Span::new(start, end, 0.0, 1.0, player);
     let mut later_triangles = Vec::new();
-    for &[a, b, c] in triangles {
+    for &[a, b, c] in triangles.triangles() {
         let corners = [a as usize, b as usize, c as usize];
         match span.triangle_whole(corners) {
             Holds::Filtered | Holds::Exactly => {}

@@ -16,7 +16,7 @@ use super::{Defect, Holds, Player, Span, certify_segment};
 use crate::flip::FlipTriangulation;
 use crate::geom::Point;
 use crate::immersion::dp::{self, is_ccw};
-use crate::immersion::precheck;
+use crate::immersion::{CheckedTriangles, precheck};
 
 /// Most flips tried for one segment: a bound on the work (each costs one
 /// certification of the segment, O(n)).
@@ -140,7 +140,8 @@ pub fn certified_triangulation(
     triangles.sort_unstable();
     // The DP's answer is certified by construction; checked once more by
     // the certificate itself.
-    super::segment_holds(start, end, &triangles, player).then_some(triangles)
+    let checked = CheckedTriangles::new(n, &triangles);
+    super::segment_holds(start, end, &checked, player).then_some(triangles)
 }
 
 /// How far from collinear the triangle `tri` is in `points`: its doubled

@@ -310,10 +310,11 @@ impl DrawingTween {
                     Motion::Tween(tween) => tween.keyframes(),
                     Motion::Scale { triangles, .. } => {
                         let ends = [part.frame(0.0)?, part.frame(1.0)?];
+                        let n = ends[0].points.len();
                         let certified = crate::certify::segment_holds(
                             &ends[0].points,
                             &ends[1].points,
-                            triangles,
+                            &crate::immersion::CheckedTriangles::new(n, triangles),
                             crate::certify::Player::Exact,
                         );
                         if !certified {

@@ -195,6 +195,46 @@ pub(crate) fn check_structure(n: usize, triangles: &[[u32; 3]]) -> Result<(), Im
     Ok(())
 }
 
+/// A list of triangles with the combinatorial half of [`check`]
+/// ([`check_structure`]) done once, for the n-gon: made for a
+/// triangulation that many shapes are checked or certified under (the
+/// keys of a leg, the pieces of a bridge), so that each of them costs only
+/// the geometric half.
+#[derive(Clone, Debug)]
+pub(crate) struct CheckedTriangles<'a> {
+    n: usize,
+    triangles: &'a [[u32; 3]],
+    structure: Result<(), ImmersionDefect>,
+}
+
+impl<'a> CheckedTriangles<'a> {
+    /// `triangles` as a would-be triangulation of the `n`-gon, its
+    /// structure checked.
+    pub(crate) fn new(n: usize, triangles: &'a [[u32; 3]]) -> Self {
+        let structure = check_structure(n, triangles);
+        Self {
+            n,
+            triangles,
+            structure,
+        }
+    }
+
+    /// The triangles.
+    pub(crate) fn triangles(&self) -> &'a [[u32; 3]] {
+        self.triangles
+    }
+
+    /// [`check`] of `points` under these triangles: the same answer, with
+    /// the structure's half taken from [`CheckedTriangles::new`].
+    pub(crate) fn check(&self, points: &[Point]) -> Result<(), ImmersionDefect> {
+        if points.len() != self.n {
+            return check(points, self.triangles);
+        }
+        self.structure.clone()?;
+        check_triangles(points, self.triangles)
+    }
+}
+
 /// `pairs` stably sorted by `key`, whose values are below `n`: a counting
 /// sort, O(len + n).
 fn counting_sort(
@@ -290,5 +330,46 @@ mod tests {
         assert!(check(&hex, &[[0, 1, 2], [2, 3, 4], [0, 4, 5], [0, 2, 4]]).is_ok());
         let r = check(&hex, &[[0, 1, 3], [1, 2, 4], [0, 3, 5], [3, 4, 5]]);
         assert!(r.is_err(), "{r:?}");
+    }
+
+    /// A triangulation checked once answers [`check`] of every shape as
+    /// `check` does, defect for defect: a valid structure under valid and
+    /// invalid shapes, every kind of broken structure, and a shape with
+    /// another point count than the triangulation was made for.
+    #[test]
+    fn triangles_checked_once_answer_as_check_does() {
+        let hex = regular_polygon(6);
+        let mut cw = hex.clone();
+        cw.reverse();
+        let mut pinched = hex.clone();
+        pinched[1] = Point::new(0.0, 0.0);
+        let shapes = [
+            hex.clone(),
+            cw,
+            pinched,
+            hex[..5].to_vec(),
+            unit_square().to_vec(),
+        ];
+        let lists: [&[[u32; 3]]; 6] = [
+            &[[0, 1, 2], [2, 3, 4], [0, 4, 5], [0, 2, 4]],
+            &[[0, 1, 2], [2, 3, 4], [4, 5, 0], [0, 2, 4]],
+            &[[0, 1, 3], [1, 2, 4], [0, 3, 5], [3, 4, 5]],
+            &[[0, 1, 2], [2, 3, 4], [0, 4, 5]],
+            &[[0, 1, 2], [2, 3, 4], [0, 4, 9], [0, 2, 4]],
+            &[[0, 1, 2], [0, 2, 3]],
+        ];
+        let mut answers = std::collections::HashSet::new();
+        for tris in lists {
+            let checked = CheckedTriangles::new(6, tris);
+            assert_eq!(checked.triangles(), tris);
+            for p in &shapes {
+                let want = check(p, tris);
+                assert_eq!(checked.check(p), want, "{tris:?} on {p:?}");
+                answers.insert(want.as_ref().err().map(std::mem::discriminant));
+            }
+        }
+        // Valid shapes, invalid triangles and broken structures of several
+        // kinds all came up.
+        assert!(answers.len() >= 5, "{}", answers.len());
     }
 }

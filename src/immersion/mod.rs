@@ -36,8 +36,8 @@ mod check;
 pub(crate) mod dp;
 pub(crate) mod valid;
 
-pub(crate) use check::check_structure;
 pub(crate) use check::check_triangles;
+pub(crate) use check::{CheckedTriangles, check_structure};
 pub use check::{ImmersionDefect, check};
 pub use valid::is_valid_triangle;
 

@@ -1326,6 +1326,7 @@ fn merge_keys(leg: &mut Leg, tol: f64) {
     let tris = leg.plan.triangles().to_vec();
     let view: &Leg = leg;
     let (keys, samples) = (&view.keys, &view.samples);
+    let checked = crate::immersion::CheckedTriangles::new(keys[0].len(), &tris);
     // The path halfway between keys k − 1 and k, and the areas there and
     // at each key: computed once, whatever (i, j) asks for them.
     let halfway: Vec<OnceCell<(Vec<Point>, f64)>> = (0..count).map(|_| OnceCell::new()).collect();
@@ -1366,7 +1367,12 @@ fn merge_keys(leg: &mut Leg, tol: f64) {
             near(i, j, 0.5 * (samples[j - 1] + samples[j]), on, *on_area)
         };
         close
-            && crate::certify::segment_holds(&keys[i], &keys[j], &tris, crate::certify::Player::F64)
+            && crate::certify::segment_holds(
+                &keys[i],
+                &keys[j],
+                &checked,
+                crate::certify::Player::F64,
+            )
     };
     let mut kept = vec![0usize];
     let mut i = 0;

@@ -35,7 +35,7 @@ use crate::flip::canonical;
 use crate::flip::sequence::{Flip, FlipTriangulation, flip_sequence, gate};
 use crate::geom::Point;
 use crate::geom::polygon::{min_triangle_angle as min_angle, signed_area};
-use crate::immersion::{check, check_triangles};
+use crate::immersion::{CheckedTriangles, check, check_triangles};
 use crate::morph::Fallback;
 use crate::morph::propagate::compatible::PlanSeed;
 use crate::morph::staged::target::{Candidates, TargetAngles, target_shape};
@@ -458,6 +458,7 @@ impl Leg {
         path: &dyn Fn(f64) -> Vec<Point>,
     ) -> KeyOut {
         let tris = self.plan.triangles().to_vec();
+        let tris = CheckedTriangles::new(old_keys[0].len(), &tris);
         let mut out = KeyOut {
             samples: vec![old_samples[0]],
             keys: vec![old_keys[0].clone()],
@@ -468,7 +469,7 @@ impl Leg {
             strict,
             aborted: false,
         };
-        let total_area = area_and_centroid(&old_keys[0], &tris).0.abs();
+        let total_area = area_and_centroid(&old_keys[0], tris.triangles()).0.abs();
         for i in 1..old_samples.len() {
             if out.aborted {
                 break;
@@ -529,7 +530,7 @@ impl Leg {
         &self,
         a: (f64, &[Point]),
         b: (f64, &[Point]),
-        tris: &[[u32; 3]],
+        checked: &CheckedTriangles<'_>,
         tol: f64,
         out: &mut KeyOut,
         path: &dyn Fn(f64) -> Vec<Point>,
@@ -538,8 +539,9 @@ impl Leg {
         if out.aborted {
             return;
         }
+        let tris = checked.triangles();
         let certified =
-            || crate::certify::segment_holds(a.1, b.1, tris, crate::certify::Player::Exact);
+            || crate::certify::segment_holds(a.1, b.1, checked, crate::certify::Player::Exact);
         // Following the path closely (position and area) and certifying
         // the segment draw on separate budgets, so that a stretch the path
         // is hard to follow on (a strip thinner than its moves) cannot use
@@ -595,8 +597,8 @@ impl Leg {
                     false
                 };
                 if split {
-                    self.split(a, (sm, &pm), tris, tol, out, path, bridged);
-                    self.split((sm, &pm), b, tris, tol, out, path, bridged);
+                    self.split(a, (sm, &pm), checked, tol, out, path, bridged);
+                    self.split((sm, &pm), b, checked, tol, out, path, bridged);
                     return;
                 }
                 out.push(b, true);
@@ -619,7 +621,7 @@ impl Leg {
                 out.budget = budget.min(MAX_KEY_SPLITS);
                 out.cert_budget = cert_budget.min(MAX_KEY_SPLITS);
                 let (lent, cert_lent) = (out.budget, out.cert_budget);
-                self.split(a, b, tris, tol, out, &along, true);
+                self.split(a, b, checked, tol, out, &along, true);
                 out.budget = budget - (lent - out.budget);
                 out.cert_budget = cert_budget - (cert_lent - out.cert_budget);
                 return;

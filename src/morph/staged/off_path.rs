@@ -28,7 +28,7 @@
 
 use crate::certify::{Defect, Player, certify_segment, segment_holds};
 use crate::geom::Point;
-use crate::immersion::check_triangles;
+use crate::immersion::{CheckedTriangles, check_triangles};
 use crate::morph::{Compatible, ThirdVertexPath};
 use crate::tree::{Root, RootChoice};
 
@@ -61,10 +61,11 @@ pub(crate) fn off_path_keys(
     fan_margin: f64,
     tol: f64,
 ) -> Option<Vec<Vec<Point>>> {
+    let checked = CheckedTriangles::new(a.len(), tris);
     let gap = Gap {
         a,
         b,
-        tris,
+        tris: &checked,
         fan_margin,
         tol,
     };
@@ -81,7 +82,7 @@ pub(crate) fn off_path_keys(
 struct Gap<'a> {
     a: &'a [Point],
     b: &'a [Point],
-    tris: &'a [[u32; 3]],
+    tris: &'a CheckedTriangles<'a>,
     fan_margin: f64,
     tol: f64,
 }
@@ -150,12 +151,16 @@ impl Gap<'_> {
     /// The triangle where the straight motion from `a` to `b` first fails
     /// (for a fan, a triangle of it).
     fn failing_triangle(&self) -> Option<usize> {
-        let failure = certify_segment(self.a, self.b, self.tris, Player::Exact)
+        let failure = certify_segment(self.a, self.b, self.tris.triangles(), Player::Exact)
             .ok()?
             .failure?;
         match failure.defect {
             Defect::Triangle { index, .. } => Some(index),
-            Defect::Fan { vertex } => self.tris.iter().position(|t| t.contains(&(vertex as u32))),
+            Defect::Fan { vertex } => self
+                .tris
+                .triangles()
+                .iter()
+                .position(|t| t.contains(&(vertex as u32))),
             Defect::Start(_) => None,
         }
     }
@@ -175,7 +180,7 @@ impl Gap<'_> {
             } else {
                 (self.a, self.b)
             };
-            let (tris, margin) = (self.tris, self.fan_margin);
+            let (tris, margin) = (self.tris.triangles(), self.fan_margin);
             let root = root.map_or(Root::Choice(RootChoice::Disk), Root::Triangle);
             let plan = Compatible::rooted(from, to, tris, root, margin);
             let Ok(plan) = plan else {
@@ -209,7 +214,7 @@ impl Gap<'_> {
     /// enlarged `b`.
     fn enlarged(&self, most: usize) -> Option<Vec<Vec<Point>>> {
         let (a, b) = (self.a, self.b);
-        let failure = certify_segment(a, b, self.tris, Player::Exact)
+        let failure = certify_segment(a, b, self.tris.triangles(), Player::Exact)
             .ok()?
             .failure?;
         let corners: Vec<usize> = match failure.defect {
@@ -230,7 +235,8 @@ impl Gap<'_> {
 
     /// Route 2 about the corner `centre` of a failing feature of `size`.
     fn enlarged_about(&self, centre: usize, size: f64, most: usize) -> Option<Vec<Vec<Point>>> {
-        let (a, b, tris) = (self.a, self.b, self.tris);
+        let (a, b, checked) = (self.a, self.b, self.tris);
+        let tris = checked.triangles();
         // Every vertex by its larger distance from the centre at the two keys.
         let mut by_distance: Vec<(f64, usize)> = (0..a.len())
             .map(|i| {
@@ -268,8 +274,8 @@ impl Gap<'_> {
                 };
                 if check_triangles(&ea, tris).is_err()
                     || check_triangles(&eb, tris).is_err()
-                    || !segment_holds(a, &ea, tris, Player::Exact)
-                    || !segment_holds(&eb, b, tris, Player::Exact)
+                    || !segment_holds(a, &ea, checked, Player::Exact)
+                    || !segment_holds(&eb, b, checked, Player::Exact)
                 {
                     continue;
                 }
@@ -348,7 +354,7 @@ impl Split<'_> {
         *budget -= 1;
         let um = 0.5 * (a.0 + b.0);
         let m = (self.path)(um);
-        if check_triangles(&m, tris).is_err() || !self.gap.near(&m) {
+        if check_triangles(&m, tris.triangles()).is_err() || !self.gap.near(&m) {
             return false;
         }
         if !self.run(a, (um, &m), depth - 1, keys, budget) {

@@ -507,7 +507,7 @@ impl Tween {
                     leg.repair_keys();
                     // The keys are placed: the plan is built again only
                     // where a frame on an uncertified segment needs it.
-                    leg.plan.release();
+                    leg.plan.release(None);
                     Some(bridges)
                 })
                 .collect::<Vec<_>>()

@@ -95,8 +95,10 @@ pub(crate) struct PlanSeed {
     triangles: Vec<[u32; 3]>,
     root_choice: Root,
     fan_margin: f64,
-    /// The straight guide's end where it is not the target.
-    guide_end: Option<Vec<Point>>,
+    /// The straight guide's end where it is not the target: shared with
+    /// the other seeds of a route whose legs all head for the same curve
+    /// ([`Compatible::seed_sharing`]).
+    guide_end: Option<std::sync::Arc<[Point]>>,
     area_range: (f64, f64),
     /// Whether the rigid guide was found unusable (the plan reports it,
     /// [`Compatible::has_rigid_guide`]).
@@ -130,6 +132,13 @@ impl PlanSeed {
     /// [`Compatible::has_rigid_guide`] of the plan when it was released.
     pub(crate) fn has_rigid_guide(&self) -> bool {
         !self.rigid_failed
+    }
+
+    /// Notes what a plan built from this seed found of its rigid guide
+    /// (evaluated only where the rigid path is asked for; the same answer
+    /// each time it is built).
+    pub(crate) fn note_rigid_guide(&mut self, plan: &Compatible) {
+        self.rigid_failed |= !plan.has_rigid_guide();
     }
 
     /// The plan this seed was taken from, built again.
@@ -689,14 +698,27 @@ impl Compatible {
 
     /// What this plan is built from ([`PlanSeed::build`] builds it
     /// again).
+    #[cfg(test)]
     pub(crate) fn seed(&self) -> PlanSeed {
+        self.seed_sharing(None)
+    }
+
+    /// [`Compatible::seed`], holding `shared` instead of a copy of the
+    /// straight guide's end where they are the same points: the legs of
+    /// one side of a staged route toward its intermediates are all guided
+    /// at the other curve, and a copy per leg is a quarter of a seed.
+    pub(crate) fn seed_sharing(&self, shared: Option<&std::sync::Arc<[Point]>>) -> PlanSeed {
+        let guide_end = (!same_bits(&self.guide_end, &self.dst)).then(|| match shared {
+            Some(end) if same_bits(end, &self.guide_end) => std::sync::Arc::clone(end),
+            _ => std::sync::Arc::from(&self.guide_end[..]),
+        });
         PlanSeed {
             src: self.src.clone(),
             dst: self.dst.clone(),
             triangles: self.triangles.clone(),
             root_choice: self.root_choice,
             fan_margin: self.fan_margin,
-            guide_end: (!same_bits(&self.guide_end, &self.dst)).then(|| self.guide_end.clone()),
+            guide_end,
             area_range: self.area_range,
             rigid_failed: !self.has_rigid_guide(),
         }
@@ -1631,9 +1653,10 @@ pub(crate) mod tests {
                 Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
             // What the staged route changes after building: a guide's end
             // (every other pair) and an area range that binds.
-            if round % 2 == 0 {
-                let end: Vec<Point> = a.iter().zip(&b).map(|(p, q)| p.lerp(*q, 0.7)).collect();
-                plan = plan.with_guide(&end);
+            let end: Option<std::sync::Arc<[Point]>> = (round % 2 == 0)
+                .then(|| a.iter().zip(&b).map(|(p, q)| p.lerp(*q, 0.7)).collect());
+            if let Some(end) = &end {
+                plan = plan.with_guide(end);
             }
             let (a0, a1) = (
                 area_and_centroid(&a, &tris).0,
@@ -1658,7 +1681,23 @@ pub(crate) mod tests {
             let first = bits(&plan);
             let usable = plan.has_rigid_guide();
             used += usize::from(usable);
-            let seed = plan.seed();
+            // Half the seeds hold the guide's end shared (as a route's
+            // legs do), the others a copy of their own.
+            let seed = if round % 4 == 0 {
+                plan.seed_sharing(end.as_ref())
+            } else {
+                plan.seed()
+            };
+            if let (Some(end), Some(held)) = (&end, &seed.guide_end) {
+                assert_eq!(std::sync::Arc::ptr_eq(end, held), round % 4 == 0);
+            }
+            // Points that differ are never shared.
+            let other: std::sync::Arc<[Point]> = a.clone().into();
+            assert!(
+                plan.seed_sharing(Some(&other))
+                    .guide_end
+                    .is_none_or(|held| !std::sync::Arc::ptr_eq(&held, &other))
+            );
             drop(plan);
             let again = seed.build().unwrap();
             // The rigid guide's verdict is carried before it is used again.

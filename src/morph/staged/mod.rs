@@ -99,10 +99,15 @@ impl LegPlan {
         }
     }
 
-    /// Drops the plan, keeping its seed.
-    pub(crate) fn release(&mut self) {
+    /// Drops the plan, keeping its seed (the one it was built again from,
+    /// if it was; else one taken from it that holds `shared` in place of
+    /// equal points, [`Compatible::seed_sharing`]).
+    pub(crate) fn release(&mut self, shared: Option<&std::sync::Arc<[Point]>>) {
         if let Some(plan) = self.plan.take() {
-            self.seed = Some(plan.seed());
+            match &mut self.seed {
+                Some(seed) => seed.note_rigid_guide(&plan),
+                None => self.seed = Some(plan.seed_sharing(shared)),
+            }
         }
     }
 
@@ -1063,6 +1068,9 @@ impl Staged {
             repairs: 0,
         };
         let mut x = inp.s.to_vec();
+        // The end every leg toward an intermediate is guided at, held once
+        // by all their released plans.
+        let other_shared: std::sync::Arc<[Point]> = std::sync::Arc::from(inp.other);
         let (area, centroid) = area_and_centroid(inp.s, inp.t_start);
         let reference_disk = disk_for(inp.s, area, centroid);
         let mut target_angles = TargetAngles::default();
@@ -1129,7 +1137,7 @@ impl Staged {
             x = end_shape;
             st.flips += applied;
             if leg.s_end() > 0.0 {
-                leg.plan.release();
+                leg.plan.release(Some(&other_shared));
                 st.legs.push(leg);
             }
             if applied > 0 {

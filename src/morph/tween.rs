@@ -349,7 +349,7 @@ impl Tween {
                     .chain(l.keys.windows(2).map(|w| {
                         let mid: Vec<Point> = w[0]
                             .iter()
-                            .zip(&w[1])
+                            .zip(w[1].iter())
                             .map(|(p, q)| p.lerp(*q, 0.5))
                             .collect();
                         turning(&mid)
@@ -507,7 +507,7 @@ impl Tween {
                     leg.repair_keys();
                     // The keys are placed: the plan is built again only
                     // where a frame on an uncertified segment needs it.
-                    leg.plan.release(None);
+                    leg.plan.release(&[]);
                     Some(bridges)
                 })
                 .collect::<Vec<_>>()
@@ -768,14 +768,14 @@ impl Tween {
         let between = |k: usize, w: f64| -> Vec<Point> {
             let a = &keys[k];
             let Some(b) = keys.get(k + 1) else {
-                return a.clone();
+                return a.to_vec();
             };
             if w <= 0.0 {
-                a.clone()
+                a.to_vec()
             } else if w >= 1.0 {
-                b.clone()
+                b.to_vec()
             } else {
-                a.iter().zip(b).map(|(p, q)| p.lerp(*q, w)).collect()
+                a.iter().zip(b.iter()).map(|(p, q)| p.lerp(*q, w)).collect()
             }
         };
         let interpolated = between(k, w);
@@ -1345,7 +1345,7 @@ fn merge_keys(leg: &mut Leg, tol: f64) {
     let near = |i: usize, j: usize, sk: f64, on: &[Point], on_area: f64| -> bool {
         let (a, b) = (&keys[i], &keys[j]);
         let w = (sk - samples[i]) / (samples[j] - samples[i]);
-        let chord: Vec<Point> = a.iter().zip(b).map(|(p, q)| p.lerp(*q, w)).collect();
+        let chord: Vec<Point> = a.iter().zip(b.iter()).map(|(p, q)| p.lerp(*q, w)).collect();
         chord.iter().zip(on).all(|(c, p)| (*c - *p).length() <= tol) && {
             let on_chord = area_and_centroid(&chord, &tris).0;
             (on_chord - on_area).abs() <= KEY_AREA_TOLERANCE * on_area.abs()

@@ -90,7 +90,9 @@ pub struct Compatible {
 /// plan for each of its many legs while it walks them.
 #[derive(Clone, Debug)]
 pub(crate) struct PlanSeed {
-    src: Vec<Point>,
+    /// The source: shared with the leg's first key where released by the
+    /// staged route ([`Compatible::seed_sharing`]).
+    src: std::sync::Arc<[Point]>,
     dst: Vec<Point>,
     triangles: Vec<[u32; 3]>,
     root_choice: Root,
@@ -700,20 +702,22 @@ impl Compatible {
     /// again).
     #[cfg(test)]
     pub(crate) fn seed(&self) -> PlanSeed {
-        self.seed_sharing(None)
+        self.seed_sharing(&[])
     }
 
-    /// [`Compatible::seed`], holding `shared` instead of a copy of the
-    /// straight guide's end where they are the same points: the legs of
+    /// [`Compatible::seed`], holding one of `held` instead of a copy of
+    /// the source or of the straight guide's end wherever it is the same
+    /// points: a leg's plan starts at the leg's first key, and the legs of
     /// one side of a staged route toward its intermediates are all guided
-    /// at the other curve, and a copy per leg is a quarter of a seed.
-    pub(crate) fn seed_sharing(&self, shared: Option<&std::sync::Arc<[Point]>>) -> PlanSeed {
-        let guide_end = (!same_bits(&self.guide_end, &self.dst)).then(|| match shared {
-            Some(end) if same_bits(end, &self.guide_end) => std::sync::Arc::clone(end),
-            _ => std::sync::Arc::from(&self.guide_end[..]),
-        });
+    /// at the other curve; a copy of each per leg is half a seed.
+    pub(crate) fn seed_sharing(&self, held: &[&std::sync::Arc<[Point]>]) -> PlanSeed {
+        let share = |p: &[Point]| match held.iter().find(|h| same_bits(h, p)) {
+            Some(h) => std::sync::Arc::clone(h),
+            None => std::sync::Arc::from(p),
+        };
+        let guide_end = (!same_bits(&self.guide_end, &self.dst)).then(|| share(&self.guide_end));
         PlanSeed {
-            src: self.src.clone(),
+            src: share(&self.src),
             dst: self.dst.clone(),
             triangles: self.triangles.clone(),
             root_choice: self.root_choice,
@@ -1653,8 +1657,8 @@ pub(crate) mod tests {
                 Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
             // What the staged route changes after building: a guide's end
             // (every other pair) and an area range that binds.
-            let end: Option<std::sync::Arc<[Point]>> = (round % 2 == 0)
-                .then(|| a.iter().zip(&b).map(|(p, q)| p.lerp(*q, 0.7)).collect());
+            let end: Option<std::sync::Arc<[Point]>> =
+                (round % 2 == 0).then(|| a.iter().zip(&b).map(|(p, q)| p.lerp(*q, 0.7)).collect());
             if let Some(end) = &end {
                 plan = plan.with_guide(end);
             }
@@ -1681,22 +1685,30 @@ pub(crate) mod tests {
             let first = bits(&plan);
             let usable = plan.has_rigid_guide();
             used += usize::from(usable);
-            // Half the seeds hold the guide's end shared (as a route's
-            // legs do), the others a copy of their own.
-            let seed = if round % 4 == 0 {
-                plan.seed_sharing(end.as_ref())
+            // Half the seeds hold their source and the guide's end shared
+            // (as a route's legs do), the others copies of their own.
+            let start: std::sync::Arc<[Point]> = a.clone().into();
+            let mut held = vec![&start];
+            held.extend(&end);
+            let shares = round % 4 < 2;
+            let seed = if shares {
+                plan.seed_sharing(&held)
             } else {
                 plan.seed()
             };
+            assert_eq!(std::sync::Arc::ptr_eq(&seed.src, &start), shares);
             if let (Some(end), Some(held)) = (&end, &seed.guide_end) {
-                assert_eq!(std::sync::Arc::ptr_eq(end, held), round % 4 == 0);
+                assert_eq!(std::sync::Arc::ptr_eq(end, held), shares);
             }
+            assert_eq!(seed.guide_end.is_some(), end.is_some());
             // Points that differ are never shared.
-            let other: std::sync::Arc<[Point]> = a.clone().into();
+            let unrelated: std::sync::Arc<[Point]> = b.iter().map(|p| *p * 2.0).collect();
+            let apart = plan.seed_sharing(&[&unrelated]);
+            assert!(!std::sync::Arc::ptr_eq(&apart.src, &unrelated));
             assert!(
-                plan.seed_sharing(Some(&other))
+                apart
                     .guide_end
-                    .is_none_or(|held| !std::sync::Arc::ptr_eq(&held, &other))
+                    .is_none_or(|g| !std::sync::Arc::ptr_eq(&g, &unrelated))
             );
             drop(plan);
             let again = seed.build().unwrap();

@@ -42,6 +42,11 @@ use crate::morph::staged::target::{Candidates, TargetAngles, target_shape};
 use crate::morph::{Compatible, CompatibleError, MorphError, ThirdVertexPath, area_and_centroid};
 use crate::tree::{DualTree, RootChoice, disk_positions};
 
+/// A shape held by several owners: a key of one leg is the start of the
+/// next and of its plan's seed ([`LegPlan::release`]), and a route of
+/// hundreds of legs would otherwise hold each three times.
+pub(crate) type Shape = std::sync::Arc<[Point]>;
+
 /// Step of the walk along one leg, in the leg's own parameter.
 pub(crate) const LEG_STEP: f64 = 1.0 / 32.0;
 
@@ -62,7 +67,7 @@ pub(crate) struct Leg {
     /// The positions at each sample: the leg's keys. Between two keys the
     /// animation moves every vertex in a straight line
     /// ([`Leg::refine_keys`] makes them dense enough).
-    pub(crate) keys: Vec<Vec<Point>>,
+    pub(crate) keys: Vec<Shape>,
     /// Per segment between consecutive keys: whether the straight-line
     /// motion is certified an immersion for every s in exact arithmetic
     /// (`crate::certify`); set by [`Leg::refine_keys`].
@@ -100,13 +105,13 @@ impl LegPlan {
     }
 
     /// Drops the plan, keeping its seed (the one it was built again from,
-    /// if it was; else one taken from it that holds `shared` in place of
-    /// equal points, [`Compatible::seed_sharing`]).
-    pub(crate) fn release(&mut self, shared: Option<&std::sync::Arc<[Point]>>) {
+    /// if it was; else one taken from it that holds a shape of `held` in
+    /// place of equal points, [`Compatible::seed_sharing`]).
+    pub(crate) fn release(&mut self, held: &[&Shape]) {
         if let Some(plan) = self.plan.take() {
             match &mut self.seed {
                 Some(seed) => seed.note_rigid_guide(&plan),
-                None => self.seed = Some(plan.seed_sharing(shared)),
+                None => self.seed = Some(plan.seed_sharing(held)),
             }
         }
     }
@@ -162,7 +167,17 @@ impl std::ops::Deref for LegPlan {
 impl Leg {
     /// A leg with only its start sample.
     fn start(plan: Compatible, path: ThirdVertexPath) -> Leg {
-        let first = plan.source().to_vec();
+        let first = Shape::from(plan.source());
+        Leg::start_at(plan, path, first)
+    }
+
+    /// [`Leg::start`] from `first`, the plan's source itself (held, not
+    /// copied).
+    fn start_at(plan: Compatible, path: ThirdVertexPath, first: Shape) -> Leg {
+        debug_assert!(
+            *first == *plan.source(),
+            "a leg starts at its plan's source"
+        );
         Leg {
             plan: LegPlan::new(plan),
             path,
@@ -371,7 +386,7 @@ impl Leg {
                     certified.push(true);
                     repaired.push(None);
                     samples.push(s);
-                    keys.push(p);
+                    keys.push(p.into());
                 }
                 certified.push(true);
                 repaired.push(None);
@@ -437,7 +452,8 @@ impl Leg {
             let samples = even_params(self.samples[lo], self.samples[hi], inner.len());
             let added = inner.len();
             self.samples.splice(lo + 1..hi, samples);
-            self.keys.splice(lo + 1..hi, inner);
+            self.keys
+                .splice(lo + 1..hi, inner.into_iter().map(Shape::from));
             self.certified
                 .splice(lo..hi, std::iter::repeat_n(true, added + 1));
             self.repaired
@@ -457,7 +473,7 @@ impl Leg {
     fn keys_along(
         &self,
         old_samples: &[f64],
-        old_keys: &[Vec<Point>],
+        old_keys: &[Shape],
         tol: f64,
         strict: bool,
         path: &dyn Fn(f64) -> Vec<Point>,
@@ -480,8 +496,8 @@ impl Leg {
                 break;
             }
             let (a, b) = (
-                (old_samples[i - 1], old_keys[i - 1].as_slice()),
-                (old_samples[i], old_keys[i].as_slice()),
+                (old_samples[i - 1], &old_keys[i - 1][..]),
+                (old_samples[i], &old_keys[i][..]),
             );
             // A segment whose neighbours show the path bending far less
             // than `tol` there, whose chord keeps the area and which is
@@ -682,7 +698,7 @@ fn chord_area_loss(a: &[Point], b: &[Point]) -> f64 {
 /// The keys [`Leg::refine_keys`] builds, and its counters.
 struct KeyOut {
     samples: Vec<f64>,
-    keys: Vec<Vec<Point>>,
+    keys: Vec<Shape>,
     /// Per segment: certified for every s in exact arithmetic.
     certified: Vec<bool>,
     /// Segments that follow the straight path between their keys instead
@@ -704,7 +720,7 @@ impl KeyOut {
     fn push(&mut self, b: (f64, &[Point]), certified: bool) {
         self.certified.push(certified);
         self.samples.push(b.0);
-        self.keys.push(b.1.to_vec());
+        self.keys.push(b.1.into());
     }
 
     /// Appends the key `b` ending an uncertified segment from `a` under
@@ -1026,7 +1042,7 @@ enum Mode {
 /// How a walk along one leg ended.
 enum Walk {
     /// The leg, the flips applied at its end, and the shape there.
-    Done(Box<Leg>, usize, Vec<Point>),
+    Done(Box<Leg>, usize, Shape),
     /// No guaranteed path could be set up or checked toward this end.
     Failed(String),
     /// The vertices travelled farther than [`SideInput::limit`].
@@ -1067,7 +1083,7 @@ impl Staged {
             fallbacks: Vec::new(),
             repairs: 0,
         };
-        let mut x = inp.s.to_vec();
+        let mut x = Shape::from(inp.s);
         // The end every leg toward an intermediate is guided at, held once
         // by all their released plans.
         let other_shared: std::sync::Arc<[Point]> = std::sync::Arc::from(inp.other);
@@ -1137,7 +1153,7 @@ impl Staged {
             x = end_shape;
             st.flips += applied;
             if leg.s_end() > 0.0 {
-                leg.plan.release(Some(&other_shared));
+                leg.plan.release(&[&leg.keys[0], &other_shared]);
                 st.legs.push(leg);
             }
             if applied > 0 {
@@ -1214,7 +1230,7 @@ impl Staged {
 )]
 fn walk(
     inp: &SideInput<'_>,
-    x: &[Point],
+    x: &Shape,
     end: &[Point],
     tree: &DualTree,
     cur: &mut FlipTriangulation,
@@ -1237,8 +1253,8 @@ fn walk(
             }
             Err(e) => return Err(e.into()),
         };
-        let mut leg = Leg::start(plan, path);
-        let mut prev = x.to_vec();
+        let mut leg = Leg::start_at(plan, path, Shape::clone(x));
+        let mut prev = Shape::clone(x);
         let mut repairs = 0;
         let mut k = 1usize;
         let outcome = loop {
@@ -1470,7 +1486,7 @@ fn sample_leg(
 ) -> Result<Sampled, String> {
     let steps = (1.0 / LEG_STEP).round() as usize;
     let mut leg = Leg::start(plan, path);
-    let mut prev = x.to_vec();
+    let mut prev = Shape::clone(&leg.keys[0]);
     let mut repairs = 0;
     let turning = crate::geom::polygon::total_absolute_turning;
     leg.end_turning = turning(x).min(turning(leg.plan.target()));
@@ -1520,7 +1536,7 @@ fn record(
     s: f64,
     p: Vec<Point>,
     repairs: &mut usize,
-) -> Result<Vec<Point>, String> {
+) -> Result<Shape, String> {
     let path = leg.plan_path();
     if let Err(defect) = check_triangles(&p, tris) {
         return Err(format!(
@@ -1538,7 +1554,8 @@ fn record(
     }
     leg.samples.push(s);
     leg.travel.push(leg.length() + step);
-    leg.keys.push(p.clone());
+    let p = Shape::from(p);
+    leg.keys.push(Shape::clone(&p));
     leg.mean_travel += mean;
     Ok(p)
 }
@@ -1587,10 +1604,11 @@ mod tests {
         assert!(check_triangles(&chord(0.5), &tris).is_err());
         let plan = Compatible::new(&a, &b, &tris, RootChoice::Disk, 0.0).unwrap();
         let leg = Leg::start(plan, ThirdVertexPath::Straight);
-        let out = leg.keys_along(&[0.0, 1.0], &[a.clone(), b.clone()], 0.01, false, &chord);
+        let ends = [Shape::from(&a[..]), Shape::from(&b[..])];
+        let out = leg.keys_along(&[0.0, 1.0], &ends, 0.01, false, &chord);
         assert!(out.bridges >= 1, "no bridge");
-        assert_eq!(out.keys.first(), Some(&a));
-        assert_eq!(out.keys.last(), Some(&b));
+        assert_eq!(out.keys.first().map(|k| &k[..]), Some(&a[..]));
+        assert_eq!(out.keys.last().map(|k| &k[..]), Some(&b[..]));
         assert!(
             out.samples.windows(2).all(|w| w[0] < w[1]),
             "{:?}",
@@ -1605,7 +1623,11 @@ mod tests {
         assert!(out.certified.iter().all(|&c| c), "{:?}", out.certified);
         for w in out.keys.windows(2) {
             let area = |s: f64| {
-                let p: Vec<Point> = w[0].iter().zip(&w[1]).map(|(p, q)| p.lerp(*q, s)).collect();
+                let p: Vec<Point> = w[0]
+                    .iter()
+                    .zip(w[1].iter())
+                    .map(|(p, q)| p.lerp(*q, s))
+                    .collect();
                 (p[1] - p[0]).perp_dot(p[2] - p[0])
             };
             let (c0, c1, cm) = (area(0.0), area(1.0), area(0.5));

@@ -958,6 +958,11 @@ impl Limit<'_> {
         Limit { fixed, rival: None }
     }
 
+    /// Whether the limit can be finite: a fixed bound, or a rival.
+    fn can_fall(&self) -> bool {
+        self.fixed < f64::INFINITY || self.rival.is_some()
+    }
+
     /// The limit now (it only falls, and never below its final value).
     fn get(&self) -> f64 {
         let rival = self.rival.map_or(f64::INFINITY, |r| {
@@ -1273,7 +1278,18 @@ fn walk(
                 Ok(p) => p,
                 Err(e) => break Err(e),
             };
-            if peak.passes(travelled + leg.mean_travel, &inp.limit, false) {
+            // Every vertex still has at least the straight way to the
+            // other curve to go, where the side ends (the mean of those
+            // distances bounds the travel ahead; a millionth of it is left
+            // out for rounding): a side that cannot finish within the
+            // limit is given up here, not legs later. Only where the limit
+            // can be finite, whatever the timing.
+            let ahead = if inp.limit.can_fall() {
+                moves(&p, inp.other).1 * (1.0 - 1e-6)
+            } else {
+                0.0
+            };
+            if peak.passes(travelled + leg.mean_travel + ahead, &inp.limit, false) {
                 return Ok(Walk::GaveUp);
             }
             let applied = if s < 1.0 || !at_disk {

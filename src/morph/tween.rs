@@ -1345,9 +1345,11 @@ fn merge_keys(leg: &mut Leg, tol: f64) {
     let near = |i: usize, j: usize, sk: f64, on: &[Point], on_area: f64| -> bool {
         let (a, b) = (&keys[i], &keys[j]);
         let w = (sk - samples[i]) / (samples[j] - samples[i]);
-        let chord: Vec<Point> = a.iter().zip(b.iter()).map(|(p, q)| p.lerp(*q, w)).collect();
-        chord.iter().zip(on).all(|(c, p)| (*c - *p).length() <= tol) && {
-            let on_chord = area_and_centroid(&chord, &tris).0;
+        let chord = || a.iter().zip(b.iter()).map(|(p, q)| p.lerp(*q, w));
+        // (Vertex by vertex, so that a far chord is refused at its first
+        // vertex out of reach; the area only for a chord within reach.)
+        chord().zip(on).all(|(c, p)| (c - *p).length() <= tol) && {
+            let on_chord = area_and_centroid(&chord().collect::<Vec<Point>>(), &tris).0;
             (on_chord - on_area).abs() <= KEY_AREA_TOLERANCE * on_area.abs()
         }
     };

@@ -1718,4 +1718,65 @@ mod tests {
             assert_eq!(route == Intermediate::Disk, st.used_disk, "{route:?}");
         }
     }
+
+    /// What a racing side counts against its limit at each sample of a
+    /// leg toward an intermediate (its travel so far plus the straight way
+    /// its vertices still have to go to the other curve, less a millionth
+    /// of that) never passes the travel the side finishes with; so a side
+    /// built under a limit equal to that travel is not given up and is the
+    /// same side, and one under a limit just below it is given up.
+    #[test]
+    fn a_side_is_given_up_only_where_it_could_not_finish_within_its_limit() {
+        let (a, _) = spiral_strip(16, 1.4, 0.25);
+        let (b, _) = spiral_strip(16, 0.6, 0.25);
+        let b: Vec<Point> = (0..b.len()).map(|i| b[(i + 5) % b.len()]).collect();
+        let ta = triangulate_with(&a, Quality::Delaunay).unwrap().triangles;
+        let tb = triangulate_with(&b, Quality::Delaunay).unwrap().triangles;
+        for (s, o, ts, to) in [(&a, &b, &ta, &tb), (&b, &a, &tb, &ta)] {
+            let st = side(s, o, ts, to, Intermediate::Target);
+            let total = st.mean_travel();
+            assert!(st.legs.len() > 1, "no leg toward an intermediate");
+            let mut travelled = 0.0;
+            let mut largest = 0.0f64;
+            for leg in &st.legs {
+                let mut on_leg = 0.0;
+                for w in leg.keys.windows(2) {
+                    on_leg += moves(&w[0], &w[1]).1;
+                    let ahead = moves(&w[1], o).1 * (1.0 - 1e-6);
+                    largest = largest.max(travelled + on_leg + ahead);
+                }
+                travelled += leg.mean_travel;
+            }
+            assert!(
+                largest <= total,
+                "counted {largest} against a final travel of {total}"
+            );
+            let under = |limit: f64| {
+                Staged::build(&SideInput {
+                    s,
+                    t_start: ts,
+                    other: o,
+                    t_other: to,
+                    leg_path: ThirdVertexPath::Hybrid,
+                    final_path: ThirdVertexPath::Hybrid,
+                    rivals: true,
+                    root: RootChoice::Disk,
+                    margin: 0.05,
+                    intermediate: Intermediate::Target,
+                    floor: 0.25 * min_angle(s, ts).min(min_angle(o, to)),
+                    max_step: 0.05,
+                    limit: Limit::fixed(limit),
+                })
+                .0
+                .unwrap()
+            };
+            let kept = under(total).expect("given up within its own travel");
+            assert_eq!(kept.mean_travel().to_bits(), total.to_bits());
+            assert_eq!(kept.legs.len(), st.legs.len());
+            assert!(
+                under(total * (1.0 - 1e-9)).is_none(),
+                "not given up below its travel"
+            );
+        }
+    }
 }

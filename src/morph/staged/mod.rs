@@ -1668,13 +1668,16 @@ mod tests {
         assert!((crate::geom::polygon::area_centroid(&d) - c).length() < 1e-12);
     }
 
+    /// The side from `a` to `b`, given up (`None`) once its travel passes
+    /// `limit`.
     fn side(
         a: &[Point],
         b: &[Point],
         ta: &[[u32; 3]],
         tb: &[[u32; 3]],
         intermediate: Intermediate,
-    ) -> Staged {
+        limit: f64,
+    ) -> Option<Staged> {
         Staged::build(&SideInput {
             s: a,
             t_start: ta,
@@ -1688,24 +1691,30 @@ mod tests {
             intermediate,
             floor: 0.25 * min_angle(a, ta).min(min_angle(b, tb)),
             max_step: 0.05,
-            limit: Limit::fixed(f64::INFINITY),
+            limit: Limit::fixed(limit),
         })
         .0
         .unwrap()
-        .unwrap()
+    }
+
+    /// Two spirals and their Delaunay-quality triangulations, the second
+    /// relabelled by a shift so that the first's triangulation folds on
+    /// it.
+    fn incompatible_spirals() -> [(Vec<Point>, Vec<[u32; 3]>); 2] {
+        let (a, _) = spiral_strip(16, 1.4, 0.25);
+        let (b, _) = spiral_strip(16, 0.6, 0.25);
+        let b: Vec<Point> = (0..b.len()).map(|i| b[(i + 5) % b.len()]).collect();
+        let ta = triangulate_with(&a, Quality::Delaunay).unwrap().triangles;
+        let tb = triangulate_with(&b, Quality::Delaunay).unwrap().triangles;
+        [(a, ta), (b, tb)]
     }
 
     #[test]
     fn both_routes_between_incompatible_spirals_end_at_the_other_curve() {
-        let (a, _) = spiral_strip(16, 1.4, 0.25);
-        let (b, _) = spiral_strip(16, 0.6, 0.25);
-        // Relabelled by a shift, so that a's triangulation folds on b.
-        let b: Vec<Point> = (0..b.len()).map(|i| b[(i + 5) % b.len()]).collect();
-        let ta = triangulate_with(&a, Quality::Delaunay).unwrap().triangles;
+        let [(a, ta), (b, tb)] = incompatible_spirals();
         assert!(check(&b, &ta).is_err());
-        let tb = triangulate_with(&b, Quality::Delaunay).unwrap().triangles;
         for route in [Intermediate::Disk, Intermediate::Target] {
-            let st = side(&a, &b, &ta, &tb, route);
+            let st = side(&a, &b, &ta, &tb, route, f64::INFINITY).unwrap();
             assert!(st.flips > 0);
             let last = st.legs.last().unwrap();
             assert_eq!(last.plan.positions(1.0, last.path), b);
@@ -1727,13 +1736,9 @@ mod tests {
     /// same side, and one under a limit just below it is given up.
     #[test]
     fn a_side_is_given_up_only_where_it_could_not_finish_within_its_limit() {
-        let (a, _) = spiral_strip(16, 1.4, 0.25);
-        let (b, _) = spiral_strip(16, 0.6, 0.25);
-        let b: Vec<Point> = (0..b.len()).map(|i| b[(i + 5) % b.len()]).collect();
-        let ta = triangulate_with(&a, Quality::Delaunay).unwrap().triangles;
-        let tb = triangulate_with(&b, Quality::Delaunay).unwrap().triangles;
+        let [(a, ta), (b, tb)] = incompatible_spirals();
         for (s, o, ts, to) in [(&a, &b, &ta, &tb), (&b, &a, &tb, &ta)] {
-            let st = side(s, o, ts, to, Intermediate::Target);
+            let st = side(s, o, ts, to, Intermediate::Target, f64::INFINITY).unwrap();
             let total = st.mean_travel();
             assert!(st.legs.len() > 1, "no leg toward an intermediate");
             let mut travelled = 0.0;
@@ -1751,25 +1756,7 @@ mod tests {
                 largest <= total,
                 "counted {largest} against a final travel of {total}"
             );
-            let under = |limit: f64| {
-                Staged::build(&SideInput {
-                    s,
-                    t_start: ts,
-                    other: o,
-                    t_other: to,
-                    leg_path: ThirdVertexPath::Hybrid,
-                    final_path: ThirdVertexPath::Hybrid,
-                    rivals: true,
-                    root: RootChoice::Disk,
-                    margin: 0.05,
-                    intermediate: Intermediate::Target,
-                    floor: 0.25 * min_angle(s, ts).min(min_angle(o, to)),
-                    max_step: 0.05,
-                    limit: Limit::fixed(limit),
-                })
-                .0
-                .unwrap()
-            };
+            let under = |limit: f64| side(s, o, ts, to, Intermediate::Target, limit);
             let kept = under(total).expect("given up within its own travel");
             assert_eq!(kept.mean_travel().to_bits(), total.to_bits());
             assert_eq!(kept.legs.len(), st.legs.len());

@@ -1280,12 +1280,11 @@ fn walk(
             };
             // Every vertex still has at least the straight way to the
             // other curve to go, where the side ends (the mean of those
-            // distances bounds the travel ahead; a millionth of it is left
-            // out for rounding): a side that cannot finish within the
-            // limit is given up here, not legs later. Only where the limit
-            // can be finite, whatever the timing.
+            // distances bounds the travel ahead): a side that cannot finish
+            // within the limit is given up here, not legs later. Only where
+            // the limit can be finite, whatever the timing.
             let ahead = if inp.limit.can_fall() {
-                moves(&p, inp.other).1 * (1.0 - 1e-6)
+                moves(&p, inp.other).1 * AHEAD_COUNTED
             } else {
                 0.0
             };
@@ -1532,6 +1531,11 @@ fn sample_leg(
     Ok(Sampled::Done(Box::new(leg), repairs))
 }
 
+/// The share of the straight way still to go that a side on a leg toward
+/// an intermediate counts against its limit ([`walk`]): a millionth is
+/// left out for the rounding of the travel's sums.
+const AHEAD_COUNTED: f64 = 1.0 - 1e-6;
+
 /// Finest refinement of a leg's samples, in its own parameter.
 const MIN_SAMPLE_STEP: f64 = 1.0 / 4096.0;
 
@@ -1747,7 +1751,7 @@ mod tests {
                 let mut on_leg = 0.0;
                 for w in leg.keys.windows(2) {
                     on_leg += moves(&w[0], &w[1]).1;
-                    let ahead = moves(&w[1], o).1 * (1.0 - 1e-6);
+                    let ahead = moves(&w[1], o).1 * AHEAD_COUNTED;
                     largest = largest.max(travelled + on_leg + ahead);
                 }
                 travelled += leg.mean_travel;

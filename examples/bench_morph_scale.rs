@@ -20,7 +20,10 @@
 //!
 //! Usage: `cargo build --release --bin immerse --example bench_morph_scale
 //! && target/release/examples/bench_morph_scale [--sizes 400,1000]
-//! [--runs K] [--immerse PATH] [--baseline PATH] [--flubber DIR]`.
+//! [--runs K] [--immerse PATH] [--baseline PATH] [--flubber DIR]
+//! [--keep DIR]`. `--keep` also writes each row's two curves into DIR as
+//! `spiral-blob-N-{a,b}.json` and `triangle-spiral-N-{a,b}.json`, to
+//! profile one row alone.
 //! `--baseline` times a second immerse binary on the same curves in the
 //! same run (before/after tables). Peak memory and CPU time are read
 //! from `/proc/PID/status` and `/proc/PID/stat` (Linux) while the process
@@ -216,11 +219,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let baseline = value("--baseline").map(PathBuf::from);
     let flubber = value("--flubber").map(PathBuf::from);
+    let keep = value("--keep").map(PathBuf::from);
+    if let Some(k) = &keep {
+        std::fs::create_dir_all(k)?;
+    }
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/peer/flubber_frames.mjs");
     let dir = tempfile::tempdir()?;
-    let pairs: [(&str, Pair); 2] = [
-        ("spiral ↔ blob", |n| (spiral(n, 2.0), blob(n))),
-        ("triangle → spiral strip", |n| {
+    let pairs: [(&str, &str, Pair); 2] = [
+        ("spiral ↔ blob", "spiral-blob", |n| {
+            (spiral(n, 2.0), blob(n))
+        }),
+        ("triangle → spiral strip", "triangle-spiral", |n| {
             (triangle(), spiral(n, 2.0))
         }),
     ];
@@ -237,7 +246,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     rule += "---|---|---|";
     println!("{header}\n{rule}");
     let mut fits: Vec<String> = Vec::new();
-    for (name, make) in pairs {
+    for (name, stem, make) in pairs {
         let mut ours = Vec::new();
         let mut ours_cpu = Vec::new();
         let mut theirs = Vec::new();
@@ -246,6 +255,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let (pa, pb) = (dir.path().join("a.json"), dir.path().join("b.json"));
             write_curve(&pa, "a", &a)?;
             write_curve(&pb, "b", &b)?;
+            if let Some(k) = &keep {
+                write_curve(&k.join(format!("{stem}-{n}-a.json")), "a", &a)?;
+                write_curve(&k.join(format!("{stem}-{n}-b.json")), "b", &b)?;
+            }
             let out = dir.path().join("out.json");
             let cmd = |bin: &Path| {
                 let mut c = Command::new(bin);

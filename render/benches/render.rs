@@ -1,12 +1,11 @@
 //! Criterion benchmarks of the rasteriser and encoders on the synthetic
-//! 500-vertex morph (see `common/synth.rs`).
+//! 500-vertex morph (`testkit::synth`).
 //!
 //! ```text
 //! cargo bench -p immerse-render --bench render [-- FILTER]
 //! ```
 
-#[path = "common/synth.rs"]
-mod synth;
+use testkit::synth;
 
 use std::hint::black_box;
 

@@ -7,8 +7,7 @@
 //!
 //! With `OUT_DIR` the last run's PNG frames and GIF are kept there.
 
-#[path = "../benches/common/synth.rs"]
-mod synth;
+use testkit::synth;
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};

@@ -4,7 +4,8 @@
 //! the stress driver and shrinker ([`stress`]), the pair lists of
 //! `curves/` ([`pairs`]), the pacing measures ([`pacing`]), a running
 //! `immerse serve` with a loopback client ([`serve`]) and the independent
-//! exact checker of a straight-line segment ([`exact_check`]).
+//! exact checker of a straight-line segment ([`exact_check`]); with the
+//! `render` feature, the render crate's synthetic morph (`synth`).
 //!
 //! A development crate: never published, never a dependency of a library.
 //! Without its default `immerse` feature it holds only what needs no more
@@ -21,6 +22,8 @@ pub mod pacing;
 pub mod serve;
 #[cfg(feature = "immerse")]
 pub mod stress;
+#[cfg(feature = "render")]
+pub mod synth;
 
 pub use rng::Rng;
 

@@ -1,4 +1,5 @@
-//! Synthetic morph shared by the benchmark and `examples/bench_render.rs`.
+//! The render crate's synthetic morph, shared by its benchmark and
+//! `examples/bench_render.rs` (feature `render`).
 //!
 //! A 500-vertex star-shaped polygon, ear-clipped once (498 triangles), is
 //! interpolated towards a twisted copy of itself: each vertex turns by an
@@ -8,7 +9,7 @@
 use immerse_render::Frame;
 
 /// The star polygon with `n` vertices, counter-clockwise.
-pub(crate) fn star(n: usize) -> Vec<[f64; 2]> {
+pub fn star(n: usize) -> Vec<[f64; 2]> {
     (0..n)
         .map(|i| {
             let t = i as f64 / n as f64 * std::f64::consts::TAU;
@@ -23,7 +24,7 @@ fn cross(o: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
 }
 
 /// Ear clipping of a simple counter-clockwise polygon: `n - 2` triangles.
-pub(crate) fn ear_clip(p: &[[f64; 2]]) -> Vec<[u32; 3]> {
+pub fn ear_clip(p: &[[f64; 2]]) -> Vec<[u32; 3]> {
     let mut idx: Vec<usize> = (0..p.len()).collect();
     let mut tris = Vec::with_capacity(p.len().saturating_sub(2));
     let mut i = 0;
@@ -58,7 +59,7 @@ pub(crate) fn ear_clip(p: &[[f64; 2]]) -> Vec<[u32; 3]> {
 }
 
 /// `frames` frames morphing the `n`-vertex star into its twisted copy.
-pub(crate) fn morph(n: usize, frames: usize) -> Vec<Frame> {
+pub fn morph(n: usize, frames: usize) -> Vec<Frame> {
     let src = star(n);
     let tris = ear_clip(&src);
     let dst: Vec<[f64; 2]> = src

@@ -95,7 +95,7 @@ pub fn turning_number(points: &[Point]) -> Turning {
 
 /// Do the closed segments `a–b` and `c–d` share at least one point? Exact.
 #[inline]
-pub fn segments_touch(a: Point, b: Point, c: Point, d: Point) -> bool {
+pub(crate) fn segments_touch(a: Point, b: Point, c: Point, d: Point) -> bool {
     let o1 = orient(a, b, c);
     let o2 = orient(a, b, d);
     let o3 = orient(c, d, a);

@@ -90,7 +90,7 @@ pub fn in_circle(a: Point, b: Point, c: Point, d: Point) -> bool {
 /// The class orders angles: a smaller class means a smaller
 /// counter-clockwise angle φ ∈ [0, 2π) from the reference direction.
 #[inline]
-pub fn half_plane_class(v: Point, r: Point, x: Point) -> Option<u8> {
+pub(crate) fn half_plane_class(v: Point, r: Point, x: Point) -> Option<u8> {
     if x == v {
         return None;
     }

@@ -89,6 +89,7 @@ pub mod geom;
 mod immersion;
 pub mod morph;
 mod options;
+mod propagate;
 mod quality;
 pub mod sequence;
 #[cfg(test)]

@@ -196,7 +196,7 @@ pub(crate) fn gate(p: &[Point], quad: [u32; 4], floor: f64) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::morph::propagate::compatible::tests::{Rng, random_polygon, random_triangulation};
+    use crate::propagate::compatible::tests::{Rng, random_polygon, random_triangulation};
 
     /// The number of crossings between the diagonals of two
     /// triangulations, pair by pair: the oracle of the fast counts.

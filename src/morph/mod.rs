@@ -8,31 +8,32 @@
 //!   of the staged route raced, the best plan kept.
 //! - `staged`: the staged route: legs toward intermediates, flips at the
 //!   keys between legs (`staged::target` shapes the intermediates).
-//! - `propagate`: one compatible morph under a fixed triangulation, laid
-//!   out along the dual tree (`compatible`, `layout`, `paths`, `rigid`).
 //! - `output`: what a morph gives ([`Frame`], [`Morph`], [`Fallback`]) and
 //!   its JSON.
 //! - `measure`: the measures of motion a viewer sees (docs/design.md §7b,
 //!   §7c), which the planner holds its routes to; `crate::frames`
 //!   re-exports them.
 //!
-//! Flip sequences and the flip gate live in the crate's `flip` module.
+//! Below them all, the crate's `propagate` room makes one compatible morph
+//! under a fixed triangulation, laid out along the dual tree
+//! (`compatible`, `layout`, `paths`, `rigid`); this module re-exports its
+//! public items. Flip sequences and the flip gate live in the crate's
+//! `flip` module.
 
 pub(crate) mod measure;
 pub(crate) mod output;
 mod plan;
-pub(crate) mod propagate;
 pub(crate) mod staged;
 mod tween;
 
+pub(crate) use crate::propagate::compatible::DEFAULT_FAN_MARGIN;
+pub use crate::propagate::compatible::{Compatible, CompatibleError, area_and_centroid, lay_out};
+pub use crate::propagate::paths::ThirdVertexPath;
 pub use output::{Fallback, Frame, Morph};
 pub use plan::{
     Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, KEY_TOLERANCE,
     MorphReport, Side, morph_curves,
 };
-pub(crate) use propagate::compatible::DEFAULT_FAN_MARGIN;
-pub use propagate::compatible::{Compatible, CompatibleError, area_and_centroid, lay_out};
-pub use propagate::paths::ThirdVertexPath;
 pub(crate) use staged::Staged;
 pub(crate) use tween::strictly_increasing;
 pub use tween::{Keyframe, Tween, timed_keyframes};

@@ -6,11 +6,11 @@ use crate::flip::sequence::crossings_per_shift;
 use crate::geom::Point;
 use crate::geom::polygon::min_triangle_angle as min_angle;
 use crate::immersion::NotSelfOverlapping;
-#[cfg(feature = "cli")]
-use crate::morph::propagate::paths::HIDE_EXPERIMENTAL;
 use crate::morph::staged::{Limit, Peak, SideInput};
 use crate::morph::{Fallback, Morph};
 use crate::morph::{MorphError, MorphOptions, Staged, ThirdVertexPath};
+#[cfg(feature = "cli")]
+use crate::propagate::paths::HIDE_EXPERIMENTAL;
 use crate::quality::{Quality, triangulate_with};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -302,10 +302,7 @@ impl Correspondence {
     /// `min-flips`, and the experimental ones with the `experimental`
     /// feature.
     pub fn offered() -> Vec<Correspondence> {
-        crate::morph::propagate::paths::offered(
-            &Correspondence::ALL,
-            Correspondence::is_experimental,
-        )
+        crate::propagate::paths::offered(&Correspondence::ALL, Correspondence::is_experimental)
     }
 
     /// The CLI name.
@@ -325,7 +322,7 @@ impl Correspondence {
 impl std::str::FromStr for Correspondence {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        crate::morph::propagate::paths::parse_offered(
+        crate::propagate::paths::parse_offered(
             "correspondence",
             s,
             &Correspondence::ALL,

@@ -37,9 +37,9 @@ use crate::geom::Point;
 use crate::geom::polygon::{min_triangle_angle as min_angle, signed_area};
 use crate::immersion::{CheckedTriangles, check, check_triangles};
 use crate::morph::Fallback;
-use crate::morph::propagate::compatible::PlanSeed;
 use crate::morph::staged::target::{Candidates, TargetAngles, target_shape};
 use crate::morph::{Compatible, CompatibleError, MorphError, ThirdVertexPath, area_and_centroid};
+use crate::propagate::compatible::PlanSeed;
 use crate::tree::{DualTree, RootChoice, disk_positions};
 
 /// A shape held by several owners: a key of one leg is the start of the
@@ -1596,7 +1596,7 @@ pub(crate) fn moves(a: &[Point], b: &[Point]) -> (f64, f64) {
 mod tests {
     use super::*;
     use crate::morph::Intermediate;
-    use crate::morph::propagate::compatible::tests::spiral_strip;
+    use crate::propagate::compatible::tests::spiral_strip;
     use crate::quality::{Quality, triangulate_with};
 
     /// A triangle whose `linear` path (not a guaranteed one) turns it

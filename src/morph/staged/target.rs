@@ -31,8 +31,8 @@ use crate::flip::sequence::gate;
 use crate::geom::Point;
 use crate::geom::polygon::triangle_angles;
 use crate::immersion::check_triangles;
-use crate::morph::propagate::compatible::lay_out_rooted;
-use crate::morph::propagate::layout::{self, fit_similarity, lerp3};
+use crate::propagate::compatible::lay_out_rooted;
+use crate::propagate::layout::{self, fit_similarity, lerp3};
 use crate::tree::DualTree;
 use std::f64::consts::{PI, TAU};
 
@@ -306,7 +306,7 @@ impl Candidates {
 mod tests {
     use super::*;
     use crate::morph::area_and_centroid;
-    use crate::morph::propagate::compatible::tests::spiral_strip;
+    use crate::propagate::compatible::tests::spiral_strip;
     use crate::quality::{Quality, triangulate_with};
 
     #[test]
@@ -339,7 +339,7 @@ mod tests {
             &mut TargetAngles::default(),
         )
         .unwrap();
-        let diag = crate::morph::propagate::compatible::tests::bbox_diag(&b);
+        let diag = crate::propagate::compatible::tests::bbox_diag(&b);
         for (p, q) in t.iter().zip(&b) {
             assert!((*p - *q).length() < 1e-9 * diag);
         }

@@ -518,7 +518,7 @@ fn solve(steps: &[Step], pinned: usize, mut b: Vec<Point>) -> Vec<Point> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::morph::propagate::compatible::tests::{Rng, random_pair};
+    use crate::propagate::compatible::tests::{Rng, random_pair};
     use crate::tree::DualTree;
 
     fn edges(p: &[Point], tris: &[[u32; 3]]) -> Vec<[Point; 2]> {
@@ -578,7 +578,7 @@ mod tests {
     /// is unwound along the tree, not taken in (−π, π]).
     #[test]
     fn rotations_are_unwound_along_the_tree() {
-        use crate::morph::propagate::compatible::tests::spiral_strip;
+        use crate::propagate::compatible::tests::spiral_strip;
         let (a, tris) = spiral_strip(40, 0.25, 0.3);
         let (b, tris_b) = spiral_strip(40, 1.25, 0.3);
         assert_eq!(tris, tris_b);

@@ -14,11 +14,11 @@
 //! "Placement"); it is applied at every t, so nothing jumps.
 
 use crate::geom::Point;
-use crate::morph::propagate::layout::{self, lerp3};
-use crate::morph::propagate::paths::{
+use crate::propagate::layout::{self, lerp3};
+use crate::propagate::paths::{
     RotateSlide, ThirdVertexPath, base_frame_angles, from_base_frame, to_base_frame,
 };
-use crate::morph::propagate::rigid::RigidGuide;
+use crate::propagate::rigid::RigidGuide;
 use crate::tree::{DualTree, Root, RootChoice, Rooted, root_triangle};
 use std::f64::consts::TAU;
 

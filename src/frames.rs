@@ -2,7 +2,6 @@
 //! Table 1); the motion measures of §7b and §7c, which the planner uses
 //! too, live in the morph's room and are re-exported here.
 
-pub use crate::geom::polygon::total_absolute_turning;
 pub use crate::morph::measure::{ViewMeasures, detour, unwind, view_measures};
 use crate::morph::output::Motion;
 pub(crate) use crate::morph::output::ser_points;

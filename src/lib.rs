@@ -92,6 +92,7 @@ mod options;
 mod propagate;
 mod quality;
 pub mod sequence;
+mod staged;
 #[cfg(test)]
 mod testing;
 mod tree;

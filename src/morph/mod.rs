@@ -6,35 +6,35 @@
 //!   frames at any t.
 //! - `plan`: equal counts, correspondences, triangulations, the two sides
 //!   of the staged route raced, the best plan kept.
-//! - `staged`: the staged route: legs toward intermediates, flips at the
-//!   keys between legs (`staged::target` shapes the intermediates).
-//! - `output`: what a morph gives ([`Frame`], [`Morph`], [`Fallback`]) and
-//!   its JSON.
+//! - `output`: what a morph gives ([`Frame`], [`Morph`]) and its JSON.
 //! - `measure`: the measures of motion a viewer sees (docs/design.md §7b,
 //!   §7c), which the planner holds its routes to; `crate::frames`
 //!   re-exports them.
 //!
-//! Below them all, the crate's `propagate` room makes one compatible morph
-//! under a fixed triangulation, laid out along the dual tree
-//! (`compatible`, `layout`, `paths`, `rigid`); this module re-exports its
-//! public items. Flip sequences and the flip gate live in the crate's
-//! `flip` module.
+//! Below this module, two rooms of the crate's own, whose public items it
+//! re-exports: `crate::staged`, the staged route (legs toward
+//! intermediates, flips at the keys between legs; [`Fallback`],
+//! [`Intermediate`]), and below it `crate::propagate`, one compatible
+//! morph under a fixed triangulation, laid out along the dual tree
+//! ([`Compatible`], [`ThirdVertexPath`], [`MorphError`]). Flip sequences
+//! and the flip gate live in the crate's `flip` module.
 
 pub(crate) mod measure;
 pub(crate) mod output;
 mod plan;
-pub(crate) mod staged;
 mod tween;
 
+pub use crate::propagate::MorphError;
 pub(crate) use crate::propagate::compatible::DEFAULT_FAN_MARGIN;
 pub use crate::propagate::compatible::{Compatible, CompatibleError, area_and_centroid, lay_out};
 pub use crate::propagate::paths::ThirdVertexPath;
-pub use output::{Fallback, Frame, Morph};
+pub(crate) use crate::staged::Staged;
+pub use crate::staged::{Fallback, Intermediate};
+pub use output::{Frame, Morph};
 pub use plan::{
-    Correspondence, Counts, CurveMorphError, CurveMorphOptions, Intermediate, KEY_TOLERANCE,
-    MorphReport, Side, morph_curves,
+    Correspondence, Counts, CurveMorphError, CurveMorphOptions, KEY_TOLERANCE, MorphReport, Side,
+    morph_curves,
 };
-pub(crate) use staged::Staged;
 pub(crate) use tween::strictly_increasing;
 pub use tween::{Keyframe, Tween, timed_keyframes};
 
@@ -73,44 +73,6 @@ crate::options::setters! {
         fn with_path(path: ThirdVertexPath);
         /// Sets the fan margin ε.
         fn with_fan_margin(fan_margin: f64);
-    }
-}
-
-/// Why a morph failed.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[non_exhaustive]
-pub enum MorphError {
-    /// The pair could not be set up for a compatible morph.
-    #[error(transparent)]
-    Compatible(#[from] CompatibleError),
-    /// A frame of a guaranteed path failed the exact immersion check: a
-    /// bug in immerse.
-    #[error(
-        "frame at t = {t} of the {path} path is not an immersion ({defect}); this is a bug in immerse, please report it with the two curves"
-    )]
-    InvalidFrame {
-        /// The frame's parameter.
-        t: f64,
-        /// The path that produced it.
-        path: ThirdVertexPath,
-        /// What the checker found.
-        defect: String,
-    },
-    /// A frame was asked for at a parameter that is not in [0, 1].
-    #[error("frame parameter {0} is not a number in [0, 1]")]
-    Fraction(f64),
-}
-
-impl MorphError {
-    /// What went wrong, without the request to report a bug: for a
-    /// failure that a recovery then got around (a fallback's reason).
-    pub(crate) fn reason(&self) -> String {
-        match self {
-            MorphError::InvalidFrame { t, path, defect } => {
-                format!("frame at t = {t} of the {path} path is not an immersion ({defect})")
-            }
-            other => other.to_string(),
-        }
     }
 }
 
@@ -166,14 +128,14 @@ pub fn morph_with(
     };
     let mut fallbacks = Vec::new();
     let mut last = (0.0, String::new());
-    for (k, p) in staged::recovery_paths(path).into_iter().enumerate() {
+    for (k, p) in crate::staged::recovery_paths(path).into_iter().enumerate() {
         if k > 0 && !p.is_guaranteed() {
             continue;
         }
         match build(p) {
             // Every path before the k-th failed and left a fallback.
             Ok(frames) => {
-                fallbacks.extend(staged::guide_fallback(
+                fallbacks.extend(crate::staged::guide_fallback(
                     plan.has_rigid_guide(),
                     p,
                     "the morph",

@@ -4,6 +4,7 @@
 
 use crate::geom::Point;
 use crate::morph::ThirdVertexPath;
+use crate::staged::Fallback;
 
 /// One in-between: vertex positions and the triangulation they carry.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -134,29 +135,4 @@ pub(crate) fn path_names(paths: &[ThirdVertexPath]) -> String {
         .map(|p| p.as_str())
         .collect::<Vec<_>>()
         .join("+")
-}
-
-/// One recovery: what was done instead of what was asked, and why.
-#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
-pub struct Fallback {
-    /// What was done, e.g. "used the hybrid path for the last leg".
-    pub what: String,
-    /// Why, e.g. the defect of the frame that failed the exact check.
-    pub why: String,
-}
-
-impl Fallback {
-    /// A fallback from its two parts.
-    pub fn new(what: &str, why: &str) -> Fallback {
-        Fallback {
-            what: what.to_string(),
-            why: why.to_string(),
-        }
-    }
-}
-
-impl std::fmt::Display for Fallback {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}: {}", self.what, self.why)
-    }
 }

@@ -6,12 +6,12 @@ use crate::flip::sequence::crossings_per_shift;
 use crate::geom::Point;
 use crate::geom::polygon::min_triangle_angle as min_angle;
 use crate::immersion::NotSelfOverlapping;
-use crate::morph::staged::{Limit, Peak, SideInput};
 use crate::morph::{Fallback, Morph};
 use crate::morph::{MorphError, MorphOptions, Staged, ThirdVertexPath};
 #[cfg(feature = "cli")]
 use crate::propagate::paths::HIDE_EXPERIMENTAL;
 use crate::quality::{Quality, triangulate_with};
+use crate::staged::{Intermediate, Limit, Peak, SideInput};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -183,34 +183,6 @@ pub(crate) fn equal_counts(a: &[Point], b: &[Point], counts: Counts) -> (Vec<Poi
             insert_vertices(a, n - a.len()).0,
             insert_vertices(b, n - b.len()).0,
         ),
-    }
-}
-
-/// The intermediate that staged flips happen on the way to. With the `cli`
-/// feature it is the command line's `--intermediate` (each variant's first
-/// doc paragraph is its help there).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
-pub enum Intermediate {
-    /// A valid shape that looks like the other curve: overlaps extend instead
-    /// of unwinding.
-    ///
-    /// docs/design.md §7a.
-    #[default]
-    Target,
-    /// A convex disk with the curve's area (Mukherjee & Gopi's route).
-    ///
-    /// Mukherjee & Gopi §6.2, docs/design.md §7.
-    Disk,
-}
-
-impl Intermediate {
-    /// The CLI name.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Intermediate::Target => "target",
-            Intermediate::Disk => "disk",
-        }
     }
 }
 

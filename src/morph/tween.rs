@@ -26,9 +26,9 @@ use crate::geom::Point;
 use crate::immersion::check_triangles;
 use crate::morph::area_and_centroid;
 use crate::morph::plan::{CurveMorphError, CurveMorphOptions, MorphReport, Side, plan};
-use crate::morph::staged::{KEY_AREA_TOLERANCE, Leg, moves};
 use crate::morph::{Fallback, Frame, Morph};
-use crate::morph::{MorphError, MorphOptions, Staged, ThirdVertexPath};
+use crate::morph::{Intermediate, MorphError, MorphOptions, Staged, ThirdVertexPath};
+use crate::staged::{KEY_AREA_TOLERANCE, Leg, moves};
 use std::cell::OnceCell;
 
 /// One key of a morph's animation: the shape at fraction `t` of the pace
@@ -381,8 +381,8 @@ impl Tween {
                 Ok(_) => String::new(),
             };
             let other = match options.intermediate {
-                crate::morph::Intermediate::Disk => crate::morph::Intermediate::Target,
-                crate::morph::Intermediate::Target => crate::morph::Intermediate::Disk,
+                Intermediate::Disk => Intermediate::Target,
+                Intermediate::Target => Intermediate::Disk,
             };
             let maxmin = crate::quality::Quality::MaxMin;
             let mut retries: Vec<(CurveMorphOptions, String)> = Vec::new();
@@ -1394,7 +1394,7 @@ fn merge_keys(leg: &mut Leg, tol: f64) {
                 reach *= 2;
             }
         }
-        let good = crate::morph::staged::farthest_join(first, count, |j| joins(i, j));
+        let good = crate::staged::farthest_join(first, count, |j| joins(i, j));
         kept.push(good);
         i = good;
     }

@@ -305,7 +305,7 @@ impl Candidates {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::morph::area_and_centroid;
+    use crate::propagate::compatible::area_and_centroid;
     use crate::propagate::compatible::tests::spiral_strip;
     use crate::quality::{Quality, triangulate_with};
 
@@ -316,7 +316,7 @@ mod tests {
         let ta = triangulate_with(&a, Quality::Delaunay).unwrap().triangles;
         let tb = triangulate_with(&b, Quality::Delaunay).unwrap().triangles;
         let (area, c) = area_and_centroid(&a, &ta);
-        let disk = crate::morph::staged::disk_for(&a, area, c);
+        let disk = crate::staged::disk_for(&a, area, c);
         // A's triangulation on B: some triangles are inverted there; the
         // target is an immersion anyway.
         let mut angles = TargetAngles::default();

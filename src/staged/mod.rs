@@ -27,6 +27,11 @@
 //! check is walked again with the next guaranteed path; a target shape
 //! that cannot be laid out or that no path reaches hands over to the disk;
 //! every such step is recorded as a [`Fallback`].
+//!
+//! The second stage of a curve morph, above `crate::propagate` (each leg
+//! is one of its compatible morphs) and below `crate::morph` (which plans
+//! the sides and places their keys, and re-exports [`Fallback`] and
+//! [`Intermediate`]).
 
 mod off_path;
 pub(crate) mod target;
@@ -36,11 +41,65 @@ use crate::flip::sequence::{Flip, FlipTriangulation, flip_sequence, gate};
 use crate::geom::Point;
 use crate::geom::polygon::{min_triangle_angle as min_angle, signed_area};
 use crate::immersion::{CheckedTriangles, check, check_triangles};
-use crate::morph::Fallback;
-use crate::morph::staged::target::{Candidates, TargetAngles, target_shape};
-use crate::morph::{Compatible, CompatibleError, MorphError, ThirdVertexPath, area_and_centroid};
+use crate::propagate::MorphError;
 use crate::propagate::compatible::PlanSeed;
+use crate::propagate::compatible::{Compatible, CompatibleError, area_and_centroid};
+use crate::propagate::paths::ThirdVertexPath;
+use crate::staged::target::{Candidates, TargetAngles, target_shape};
 use crate::tree::{DualTree, RootChoice, disk_positions};
+
+/// One recovery: what was done instead of what was asked, and why.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct Fallback {
+    /// What was done, e.g. "used the hybrid path for the last leg".
+    pub what: String,
+    /// Why, e.g. the defect of the frame that failed the exact check.
+    pub why: String,
+}
+
+impl Fallback {
+    /// A fallback from its two parts.
+    pub fn new(what: &str, why: &str) -> Fallback {
+        Fallback {
+            what: what.to_string(),
+            why: why.to_string(),
+        }
+    }
+}
+
+impl std::fmt::Display for Fallback {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.what, self.why)
+    }
+}
+
+/// The intermediate that staged flips happen on the way to. With the `cli`
+/// feature it is the command line's `--intermediate` (each variant's first
+/// doc paragraph is its help there).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum Intermediate {
+    /// A valid shape that looks like the other curve: overlaps extend instead
+    /// of unwinding.
+    ///
+    /// docs/design.md §7a.
+    #[default]
+    Target,
+    /// A convex disk with the curve's area (Mukherjee & Gopi's route).
+    ///
+    /// Mukherjee & Gopi §6.2, docs/design.md §7.
+    Disk,
+}
+
+impl Intermediate {
+    /// The CLI name.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Intermediate::Target => "target",
+            Intermediate::Disk => "disk",
+        }
+    }
+}
 
 /// A shape held by several owners: a key of one leg is the start of the
 /// next and of its plan's seed ([`LegPlan::release`]), and a route of
@@ -929,7 +988,7 @@ pub(crate) struct SideInput<'a> {
     pub(crate) rivals: bool,
     pub(crate) root: RootChoice,
     pub(crate) margin: f64,
-    pub(crate) intermediate: crate::morph::Intermediate,
+    pub(crate) intermediate: Intermediate,
     /// The gate's angle floor on the target route.
     pub(crate) floor: f64,
     /// The largest vertex move allowed between checked samples (samples
@@ -1097,7 +1156,7 @@ impl Staged {
         let mut target_angles = TargetAngles::default();
         let mut mode = Mode::Target;
         let mut order = FlipOrder::Gain(Candidates::new(&cur, &goal));
-        if inp.intermediate == crate::morph::Intermediate::Disk {
+        if inp.intermediate == Intermediate::Disk {
             (mode, order) = Self::to_disk(&x, &cur, goal_tris);
             st.used_disk = true;
         }
@@ -1191,7 +1250,7 @@ impl Staged {
                 st.used_disk = true;
             }
         }
-        st.u_star = if st.used_disk && inp.intermediate == crate::morph::Intermediate::Disk {
+        st.u_star = if st.used_disk && inp.intermediate == Intermediate::Disk {
             if st.flips == 0 { 0.0 } else { 1.0 - remaining }
         } else {
             st.legs.len() as f64
@@ -1595,7 +1654,6 @@ pub(crate) fn moves(a: &[Point], b: &[Point]) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::morph::Intermediate;
     use crate::propagate::compatible::tests::spiral_strip;
     use crate::quality::{Quality, triangulate_with};
 
@@ -1666,7 +1724,7 @@ mod tests {
     #[test]
     fn the_disk_has_the_curve_area_and_centroid() {
         let (s, tris) = spiral_strip(20, 1.3, 0.2);
-        let (area, c) = crate::morph::area_and_centroid(&s, &tris);
+        let (area, c) = area_and_centroid(&s, &tris);
         let d = disk_for(&s, area, c);
         assert!((signed_area(&d) - area).abs() < 1e-12 * area);
         assert!((crate::geom::polygon::area_centroid(&d) - c).length() < 1e-12);

@@ -29,7 +29,8 @@
 use crate::certify::{Defect, Player, certify_segment, segment_holds};
 use crate::geom::Point;
 use crate::immersion::{CheckedTriangles, check_triangles};
-use crate::morph::{Compatible, ThirdVertexPath};
+use crate::propagate::compatible::Compatible;
+use crate::propagate::paths::ThirdVertexPath;
 use crate::tree::{Root, RootChoice};
 
 /// Deepest split of a bridge, in its own parameter (a bridge spans one

@@ -15,7 +15,7 @@
 //! - SVG: the one closed subpath of a `path`, `polygon`, `rect`, `circle`
 //!   or `ellipse`, with transforms applied (a file of several is a
 //!   [`crate::drawing::Drawing`], refused here naming its parts),
-//!   Béziers flattened to [`SVG_FLATTEN_TOLERANCE`] of the shape's size,
+//!   Béziers flattened to 0.1 % of the shape's size,
 //!   and y flipped (SVG is y down).
 
 mod clean;
@@ -27,7 +27,7 @@ mod text;
 pub use clean::{MAX_COORDINATE, MAX_POINTS, MIN_COORDINATE};
 pub use error::CurveError;
 pub(crate) use error::one_line as error_one_line;
-pub use svg::{MAX_SVG_PATH_NUMBER, MAX_SVG_SHAPES, SVG_FLATTEN_TOLERANCE, SvgShapes};
+pub use svg::{MAX_SVG_PATH_NUMBER, MAX_SVG_SHAPES, SvgShapes};
 
 use crate::geom::Point;
 use crate::geom::polygon::{self, Turning};

@@ -19,7 +19,7 @@ use crate::geom::Point;
 /// Flattening tolerance for Bézier segments, relative to the diagonal of
 /// the shape's bounding box: the flattened polyline stays within this
 /// fraction of the diagonal of the true curve (0.1%).
-pub const SVG_FLATTEN_TOLERANCE: f64 = 1e-3;
+pub(crate) const SVG_FLATTEN_TOLERANCE: f64 = 1e-3;
 
 /// Upper bound on the segments one Bézier is split into, so that a
 /// malformed file cannot ask for unbounded work.

@@ -30,9 +30,7 @@ mod tween;
 
 pub use matching::{MatchMode, Matching, match_shapes};
 pub use style::{Color, FillRule, Style};
-pub use tween::{
-    DrawingFrame, DrawingTween, DrawingTweenError, FrameShape, GROWN_SCALE, ShapeKeys, ShapeRole,
-};
+pub use tween::{DrawingFrame, DrawingTween, DrawingTweenError, FrameShape, ShapeKeys, ShapeRole};
 
 use crate::curve::{Curve, CurveError, Format};
 use crate::geom::Point;

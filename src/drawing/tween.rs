@@ -15,7 +15,7 @@ use rayon::prelude::*;
 
 /// The scale of the copy an unmatched shape grows from or shrinks to: a
 /// shape of size zero is not a disk, so the copy is small, not a point.
-pub const GROWN_SCALE: f64 = 0.02;
+pub(crate) const GROWN_SCALE: f64 = 0.02;
 
 /// What a shape of a drawing morph does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]

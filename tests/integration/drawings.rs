@@ -406,10 +406,13 @@ fn matching_by_id_order_and_auto() {
 
 /// Every shape of every frame is an immersed disk (the independent
 /// checker); the ends are the drawings; a vanishing shape shrinks by a
-/// similarity to GROWN_SCALE and fades out, an appearing one the reverse.
+/// similarity to a copy scaled by 0.02 (design §2b) and fades out, an appearing one
+/// the reverse.
 #[test]
 fn drawing_tween_frames_are_immersions_with_growing_and_fading_shapes() {
-    use immerse::drawing::{DrawingTween, GROWN_SCALE, MatchMode, ShapeRole, match_shapes};
+    use immerse::drawing::{DrawingTween, MatchMode, ShapeRole, match_shapes};
+    // The documented scale of the copy an unmatched shape grows from.
+    const GROWN_SCALE: f64 = 0.02;
     use immerse::morph::CurveMorphOptions;
     let (a, b) = shuffled();
     for (src, dst) in [(&a, &b), (&b, &a)] {

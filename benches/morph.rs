@@ -9,7 +9,7 @@
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use immerse::RootChoice;
-use immerse::morph::{Compatible, CurveMorphOptions, ThirdVertexPath, Tween, morph_curves};
+use immerse::morph::{Compatible, CurveMorphOptions, ThirdVertexPath, Tween};
 use std::hint::black_box;
 
 use testkit::shapes::spiral_strip;
@@ -34,7 +34,10 @@ fn frames(c: &mut Criterion) {
         let (b, _) = spiral_strip(m, 0.7, 0.3);
         let fr: Vec<f64> = (0..60).map(|i| f64::from(i) / 59.0).collect();
         g.bench_function(BenchmarkId::from_parameter(2 * m), |bench| {
-            bench.iter(|| black_box(morph_curves(&a, &b, &fr, &CurveMorphOptions::DEFAULT).is_ok()))
+            bench.iter(|| {
+                let tween = Tween::new(&a, &b, &CurveMorphOptions::DEFAULT);
+                black_box(tween.is_ok_and(|t| t.morph(&fr).is_ok()))
+            })
         });
     }
     g.finish();

@@ -5,8 +5,9 @@
 //! Run with `cargo run --release --example bench_frames`.
 
 use immerse::RootChoice;
-use immerse::morph::{Compatible, CurveMorphOptions, ThirdVertexPath, morph_curves};
+use immerse::morph::{Compatible, CurveMorphOptions, ThirdVertexPath};
 use std::time::Instant;
+use testkit::morph_pair;
 
 use testkit::shapes::spiral_strip;
 
@@ -95,7 +96,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     println!(
-        "\n## End to end (`morph_curves`, triangulation + both sides + 60 checked frames; median of 3)\n"
+        "\n## End to end (`Tween::new` and `Tween::morph`: triangulation + both sides + 60 checked frames; median of 3)\n"
     );
     println!("| vertices | time (ms) |");
     println!("|---|---|");
@@ -106,7 +107,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let runs: Vec<f64> = (0..3)
             .map(|_| {
                 let start = Instant::now();
-                let out = morph_curves(&a, &b, &fr, &CurveMorphOptions::DEFAULT);
+                let out = morph_pair(&a, &b, &fr, &CurveMorphOptions::DEFAULT);
                 std::hint::black_box(out.is_ok());
                 start.elapsed().as_secs_f64()
             })

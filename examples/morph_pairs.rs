@@ -9,9 +9,10 @@
 
 use immerse::Curve;
 use immerse::frames::metrics;
-use immerse::morph::{Correspondence, CurveMorphOptions, Intermediate, morph_curves};
+use immerse::morph::{Correspondence, CurveMorphOptions, Intermediate};
 use std::path::Path;
 use std::time::Instant;
+use testkit::morph_pair;
 
 use testkit::pairs::reference_pairs;
 
@@ -48,7 +49,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     .with_correspondence(rule)
                     .with_intermediate(route);
                 let start = Instant::now();
-                let (report, morph) = morph_curves(&ca.points, &cb.points, &fractions, &options)?;
+                let (report, morph) = morph_pair(&ca.points, &cb.points, &fractions, &options)?;
                 let ms = start.elapsed().as_secs_f64() * 1e3;
                 let m = metrics(&morph.frames);
                 // Path length: summed largest vertex move per frame, in units

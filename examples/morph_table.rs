@@ -22,7 +22,7 @@ use immerse::Curve;
 use immerse::RootChoice;
 use immerse::check;
 use immerse::frames::{Frame, metrics};
-use immerse::morph::{Compatible, MorphOptions, ThirdVertexPath, morph_with};
+use immerse::morph::{Compatible, MorphOptions, ThirdVertexPath};
 use immerse::{Quality, triangulate_with};
 
 /// Frames per morph.
@@ -168,7 +168,8 @@ fn main() {
                         .is_immersion()
                     })
                     .count();
-                let morph = morph_with(&plan, &times, path)
+                let morph = plan
+                    .morph(&times, path)
                     .unwrap_or_else(|e| panic!("{name} {q} {path}: {e}"));
                 let m = metrics(&morph.frames);
                 assert_eq!(

@@ -6,7 +6,7 @@
 //! replaced).
 
 use immerse::Curve;
-use immerse::morph::{CurveMorphOptions, morph_curves};
+use immerse::morph::{CurveMorphOptions, Tween};
 use std::path::Path;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -14,12 +14,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let a = Curve::from_path(curves.join("ribbon-curl.svg"))?;
     let b = Curve::from_path(curves.join("tail-loop.svg"))?;
     let fractions: Vec<f64> = (0..=30).map(|i| f64::from(i) / 30.0).collect();
-    let (report, morph) = morph_curves(
-        &a.points,
-        &b.points,
-        &fractions,
-        &CurveMorphOptions::DEFAULT,
-    )?;
+    let tween = Tween::new(&a.points, &b.points, &CurveMorphOptions::DEFAULT)?;
+    let morph = tween.morph(&fractions)?;
+    let report = tween.report();
     assert!(morph.frames.iter().all(|f| f.is_immersion()));
     let out = std::env::args()
         .nth(1)

@@ -23,10 +23,10 @@ use immerse::Curve;
 use immerse::frames::{metrics, view_measures};
 use immerse::morph::{
     Correspondence, CurveMorphOptions, Intermediate, MorphOptions, ThirdVertexPath, Tween,
-    morph_curves,
 };
 use std::path::Path;
 use std::time::Instant;
+use testkit::morph_pair;
 
 use testkit::pairs;
 
@@ -167,7 +167,7 @@ fn table(
         let mut result = None;
         for _ in 0..reps.max(1) {
             let start = Instant::now();
-            let r = morph_curves(&ca.points, &cb.points, &fractions, options);
+            let r = morph_pair(&ca.points, &cb.points, &fractions, options);
             times.push(start.elapsed().as_secs_f64() * 1e3);
             result = Some(r);
         }

@@ -24,11 +24,12 @@
 use immerse::Curve;
 use immerse::Point;
 use immerse::correspond::equalize;
-use immerse::morph::{CurveMorphOptions, morph_curves};
+use immerse::morph::CurveMorphOptions;
 use immerse::{NotSelfOverlapping, triangulate};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+use testkit::morph_pair;
 
 /// Frames per pair, at t = i / (FRAMES − 1).
 const FRAMES: usize = 41;
@@ -239,7 +240,7 @@ fn compare(dir: &Path) -> Result<(), Box<dyn std::error::Error>> {
         let (lin, lin_ms) = timed(|| linear(&a, &b, &ts));
         let n = lin[0].len();
         let tl = Tally::of(lin, source_reversed);
-        let (morph, imm_ms) = timed(|| morph_curves(&a, &b, &ts, &CurveMorphOptions::DEFAULT));
+        let (morph, imm_ms) = timed(|| morph_pair(&a, &b, &ts, &CurveMorphOptions::DEFAULT));
         let (_, morph) = morph.map_err(|e| format!("{}: {e}", pair.name))?;
         let ti = Tally::of(morph.frames.into_iter().map(|f| f.points), source_reversed);
         if ti.ok != ti.frames || ti.flipped != 0 {

@@ -58,6 +58,10 @@
 //! # }
 //! ```
 //!
+//! Two curves that already share a triangulation (a compatible pair, the
+//! seed papers' setting) are morphed without planning by
+//! [`morph::Compatible::new`] and [`morph::Compatible::morph`].
+//!
 //! ## Reading a curve
 //!
 //! ```

@@ -33,7 +33,6 @@ pub use crate::staged::{Fallback, Intermediate};
 pub use output::{Frame, Morph};
 pub use plan::{
     Correspondence, Counts, CurveMorphError, CurveMorphOptions, KEY_TOLERANCE, MorphReport, Side,
-    morph_curves,
 };
 pub(crate) use tween::strictly_increasing;
 pub use tween::{Keyframe, Tween, timed_keyframes};
@@ -76,86 +75,69 @@ crate::options::setters! {
     }
 }
 
-/// Morphs two curves that share the triangulation `triangles`, producing
-/// one frame per value in `times`.
-///
-/// Every frame is checked with the exact immersion test before it is
-/// returned. When the requested path is `linear` or `rotate-slide` and any
-/// frame fails, the whole morph is recomputed with `hybrid` and
-/// [`Morph::fallback`] is set. End frames (t = 0 and t = 1) are the inputs
-/// exactly.
-///
-/// # Errors
-///
-/// [`MorphError`] when the pair is not compatible under `triangles`, or
-/// (a bug) when a guaranteed path produced an invalid frame.
-pub fn morph_compatible(
-    src: &[crate::geom::Point],
-    dst: &[crate::geom::Point],
-    triangles: &[[u32; 3]],
-    times: &[f64],
-    options: &MorphOptions,
-) -> Result<Morph, MorphError> {
-    let plan = Compatible::new(src, dst, triangles, options.root, options.fan_margin)?;
-    morph_with(&plan, times, options.path)
-}
-
-/// As [`morph_compatible`], with the pair already prepared.
-///
-/// # Errors
-///
-/// As [`morph_compatible`].
-pub fn morph_with(
-    plan: &Compatible,
-    times: &[f64],
-    path: ThirdVertexPath,
-) -> Result<Morph, MorphError> {
-    let build = |path: ThirdVertexPath| -> Result<Vec<Frame>, (f64, String)> {
-        let frames: Vec<Frame> = times
-            .iter()
-            .map(|&t| Frame {
-                t,
-                points: plan.positions(t, path),
-                triangles: plan.triangles().to_vec(),
-            })
-            .collect();
-        for f in &frames {
-            if let Err(defect) = f.check() {
-                return Err((f.t, defect.to_string()));
+impl Compatible {
+    /// The frames of this pair's morph along `path`, one per value in
+    /// `times` (the pair shares one triangulation: [`Compatible::new`]).
+    ///
+    /// Every frame is checked with the exact immersion test before it is
+    /// returned. When the requested path is not guaranteed (`linear`,
+    /// `rotate-slide`) and any frame fails, the whole morph is recomputed
+    /// with the guaranteed paths in turn, and [`Morph::fallback`] is set.
+    /// End frames (t = 0 and t = 1) are the inputs exactly.
+    ///
+    /// # Errors
+    ///
+    /// [`MorphError::InvalidFrame`] (a bug) when a guaranteed path produced
+    /// an invalid frame.
+    pub fn morph(&self, times: &[f64], path: ThirdVertexPath) -> Result<Morph, MorphError> {
+        let plan = self;
+        let build = |path: ThirdVertexPath| -> Result<Vec<Frame>, (f64, String)> {
+            let frames: Vec<Frame> = times
+                .iter()
+                .map(|&t| Frame {
+                    t,
+                    points: plan.positions(t, path),
+                    triangles: plan.triangles().to_vec(),
+                })
+                .collect();
+            for f in &frames {
+                if let Err(defect) = f.check() {
+                    return Err((f.t, defect.to_string()));
+                }
+            }
+            Ok(frames)
+        };
+        let mut fallbacks = Vec::new();
+        let mut last = (0.0, String::new());
+        for (k, p) in crate::staged::recovery_paths(path).into_iter().enumerate() {
+            if k > 0 && !p.is_guaranteed() {
+                continue;
+            }
+            match build(p) {
+                // Every path before the k-th failed and left a fallback.
+                Ok(frames) => {
+                    fallbacks.extend(crate::staged::guide_fallback(
+                        plan.has_rigid_guide(),
+                        p,
+                        "the morph",
+                    ));
+                    return Ok(Morph::new(vec![p], fallbacks, frames));
+                }
+                Err((t, defect)) => {
+                    fallbacks.push(Fallback::new(
+                        &format!("did not use the {p} path"),
+                        &format!("its frame at t = {t} is not an immersion ({defect})"),
+                    ));
+                    last = (t, defect);
+                }
             }
         }
-        Ok(frames)
-    };
-    let mut fallbacks = Vec::new();
-    let mut last = (0.0, String::new());
-    for (k, p) in crate::staged::recovery_paths(path).into_iter().enumerate() {
-        if k > 0 && !p.is_guaranteed() {
-            continue;
-        }
-        match build(p) {
-            // Every path before the k-th failed and left a fallback.
-            Ok(frames) => {
-                fallbacks.extend(crate::staged::guide_fallback(
-                    plan.has_rigid_guide(),
-                    p,
-                    "the morph",
-                ));
-                return Ok(Morph::new(vec![p], fallbacks, frames));
-            }
-            Err((t, defect)) => {
-                fallbacks.push(Fallback::new(
-                    &format!("did not use the {p} path"),
-                    &format!("its frame at t = {t} is not an immersion ({defect})"),
-                ));
-                last = (t, defect);
-            }
-        }
+        Err(MorphError::InvalidFrame {
+            t: last.0,
+            path,
+            defect: last.1,
+        })
     }
-    Err(MorphError::InvalidFrame {
-        t: last.0,
-        path,
-        defect: last.1,
-    })
 }
 
 #[cfg(test)]

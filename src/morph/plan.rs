@@ -6,7 +6,7 @@ use crate::flip::sequence::crossings_per_shift;
 use crate::geom::Point;
 use crate::geom::polygon::min_triangle_angle as min_angle;
 use crate::immersion::NotSelfOverlapping;
-use crate::morph::{Fallback, Morph};
+use crate::morph::Fallback;
 use crate::morph::{MorphError, MorphOptions, Staged, ThirdVertexPath};
 #[cfg(feature = "cli")]
 use crate::propagate::paths::HIDE_EXPERIMENTAL;
@@ -35,7 +35,7 @@ pub enum Counts {
     Resample,
 }
 
-/// Options of [`morph_curves`].
+/// Options of a curve morph ([`crate::morph::Tween::new`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct CurveMorphOptions {
@@ -154,14 +154,6 @@ pub enum CurveMorphError {
     Insertion {
         /// What the triangulation found.
         reason: NotSelfOverlapping,
-    },
-    /// A fraction is not a number in [0, 1].
-    #[error("frame fraction {value} (at position {index}) is not a number in [0, 1]")]
-    Fraction {
-        /// Its position in the list.
-        index: usize,
-        /// The value given.
-        value: f64,
     },
     /// A key tolerance that is not a fraction of the diagonal above 0 and
     /// at most 0.1.
@@ -328,7 +320,7 @@ pub(crate) fn shape_cost_per_shift(a: &[Point], b: &[Point]) -> Vec<f64> {
 
 /// Chooses the cyclic shift k (target vertex `i + k` matches source
 /// vertex `i`) by `rule` ([`Correspondence::Best`] needs trial morphs,
-/// which [`morph_curves`] runs; here it means `MinFlips`).
+/// which [`crate::morph::Tween::new`] runs; here it means `MinFlips`).
 pub(crate) fn choose_shift(
     a: &[Point],
     b: &[Point],
@@ -376,7 +368,7 @@ pub(crate) fn choose_shift(
     }
 }
 
-/// What [`morph_curves`] (and [`crate::morph::Tween`]) did.
+/// What [`crate::morph::Tween::new`] did.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MorphReport {
     /// Vertices of each curve after equalising counts.
@@ -409,47 +401,6 @@ pub struct MorphReport {
     /// Triangles whose third vertex the layout moved by the exact
     /// orientation test (rounding repairs), over every checked sample.
     pub repairs: usize,
-}
-
-/// Checks that every fraction is a number in [0, 1].
-fn check_fractions(fractions: &[f64]) -> Result<(), CurveMorphError> {
-    match fractions.iter().position(|f| !(0.0..=1.0).contains(f)) {
-        Some(index) => Err(CurveMorphError::Fraction {
-            index,
-            value: fractions[index],
-        }),
-        None => Ok(()),
-    }
-}
-
-/// Morphs curve `a` into curve `b` (both oriented, turning number +1).
-/// `fractions` place the output frames along the path by cumulative
-/// maximum vertex displacement (0 = `a`, 1 = `b`); every frame passes the
-/// exact immersion check.
-///
-/// Both curves are brought to equal counts and triangulated; a cyclic
-/// shift matches their vertices; each curve is then staged toward the
-/// other's triangulation (docs/design.md §7) and the side that gets there first
-/// is used, so `morph_curves(a, b)` is `morph_curves(b, a)` reversed. This
-/// is a loop over [`crate::morph::Tween::frame`]; build a [`crate::morph::Tween`] to ask
-/// for frames one at a time.
-///
-/// # Errors
-///
-/// [`CurveMorphError`]: a curve is not self-overlapping, a fraction is not
-/// in [0, 1], or (a bug) the morph failed.
-pub fn morph_curves(
-    a: &[Point],
-    b: &[Point],
-    fractions: &[f64],
-    options: &CurveMorphOptions,
-) -> Result<(MorphReport, Morph), CurveMorphError> {
-    check_fractions(fractions)?;
-    let tween = crate::morph::Tween::new(a, b, options)?;
-    let morph = tween.morph(fractions)?;
-    let mut report = tween.report().clone();
-    report.fallbacks.clone_from(&morph.fallbacks);
-    Ok((report, morph))
 }
 
 /// One side of a plan: its staged path, or `None` when it was given up

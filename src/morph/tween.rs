@@ -1,9 +1,8 @@
 //! A morph planned once, asked for frames at any t (docs/design.md §12).
 //!
-//! [`Tween::new`] does all the planning of [`crate::morph::morph_curves`]: equal
-//! counts, triangulations, correspondence, both staged sides and the
-//! choice between them, every leg walked and checked exactly at its
-//! samples, the keys (split until every straight segment between two keys
+//! [`Tween::new`] does all the planning of a curve morph: equal counts,
+//! triangulations, correspondence, both staged sides and the choice
+//! between them, every leg walked and checked exactly at its samples, the keys (split until every straight segment between two keys
 //! is certified, docs/design.md §13) and the pacing table.
 //! [`Tween::frame`] then costs a binary search, one linear interpolation
 //! between two keys and one exact check, O(n), and gives the same frame
@@ -104,7 +103,12 @@ pub struct Tween {
 
 impl Tween {
     /// Plans the morph of curve `a` into curve `b` (both oriented, turning
-    /// number +1), as [`crate::morph::morph_curves`] does.
+    /// number +1). Both curves are brought to equal counts and
+    /// triangulated; a cyclic shift matches their vertices; each curve is
+    /// then staged toward the other's triangulation (docs/design.md §7)
+    /// and the side that gets there first is used, so the morph of `b`
+    /// into `a` is this one reversed. [`Tween::morph`] then gives frames
+    /// at many fractions, [`Tween::frame`] one at a time.
     ///
     /// # Errors
     ///

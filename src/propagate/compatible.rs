@@ -1314,7 +1314,7 @@ pub(crate) fn lay_out_rooted(
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use crate::morph::Frame;
+    use crate::morph::{Frame, MorphError};
     use std::f64::consts::PI;
 
     /// The angle rule keeps a thin triangle's third vertex where it is
@@ -1582,14 +1582,11 @@ pub(crate) mod tests {
                 .into_iter()
                 .enumerate()
             {
-                let m = crate::morph::morph_compatible(
-                    &a,
-                    &b,
-                    &tris,
-                    &times,
-                    &crate::morph::MorphOptions::DEFAULT.with_path(path),
-                )
-                .unwrap();
+                let o = crate::morph::MorphOptions::DEFAULT;
+                let m = Compatible::new(&a, &b, &tris, o.root, o.fan_margin)
+                    .map_err(MorphError::from)
+                    .and_then(|plan| plan.morph(&times, path))
+                    .unwrap();
                 assert!(m.frames.iter().all(Frame::is_immersion));
                 if m.fallback {
                     fell[k] += 1;
@@ -1623,14 +1620,11 @@ pub(crate) mod tests {
             assert!(crate::immersion::check(&b, &tris).is_ok(), "case {case}");
             let times: Vec<f64> = (0..=200).map(|i| i as f64 / 200.0).collect();
             for path in ThirdVertexPath::ALL {
-                let morph = crate::morph::morph_compatible(
-                    &a,
-                    &b,
-                    &tris,
-                    &times,
-                    &crate::morph::MorphOptions::DEFAULT.with_path(path),
-                )
-                .unwrap_or_else(|e| panic!("case {case} {path}: {e}"));
+                let o = crate::morph::MorphOptions::DEFAULT;
+                let morph = Compatible::new(&a, &b, &tris, o.root, o.fan_margin)
+                    .map_err(MorphError::from)
+                    .and_then(|plan| plan.morph(&times, path))
+                    .unwrap_or_else(|e| panic!("case {case} {path}: {e}"));
                 assert!(morph.frames.iter().all(Frame::is_immersion));
                 assert_eq!(morph.frames[0].points, a);
                 assert_eq!(morph.frames[200].points, b);

@@ -4,7 +4,8 @@
 //! the stress driver and shrinker ([`stress`]), the pair lists of
 //! `curves/` ([`pairs`]), the pacing measures ([`pacing`]), a running
 //! `immerse serve` with a loopback client ([`serve`]) and the independent
-//! exact checker of a straight-line segment ([`exact_check`]); with the
+//! exact checker of a straight-line segment ([`exact_check`]), and
+//! [`morph_pair`], a whole curve morph in one call; with the
 //! `render` feature, the render crate's synthetic morph (`synth`).
 //!
 //! A development crate: never published, never a dependency of a library.
@@ -26,6 +27,28 @@ pub mod stress;
 pub mod synth;
 
 pub use rng::Rng;
+
+/// A curve morph at `fractions` in one call, as the tests and measuring
+/// examples want it: [`immerse::Tween::new`], then
+/// [`immerse::Tween::morph`], with the plan's report whose fallbacks are
+/// the morph's (the plan's and those of the frames).
+///
+/// # Errors
+///
+/// As [`immerse::Tween::new`] and [`immerse::Tween::morph`].
+#[cfg(feature = "immerse")]
+pub fn morph_pair(
+    a: &[immerse::Point],
+    b: &[immerse::Point],
+    fractions: &[f64],
+    options: &immerse::CurveMorphOptions,
+) -> Result<(immerse::morph::MorphReport, immerse::morph::Morph), immerse::morph::CurveMorphError> {
+    let tween = immerse::Tween::new(a, b, options)?;
+    let morph = tween.morph(fractions)?;
+    let mut report = tween.report().clone();
+    report.fallbacks.clone_from(&morph.fallbacks);
+    Ok((report, morph))
+}
 
 /// The workspace's root folder (where `curves/` and `tests/` are).
 pub fn workspace_root() -> std::path::PathBuf {

@@ -23,9 +23,7 @@ use immerse::Quality;
 use immerse::geom::Point;
 use immerse::geom::polygon::triangle_angles;
 use immerse::geom::{Orientation, orient};
-use immerse::morph::{
-    Correspondence, Counts, CurveMorphOptions, Intermediate, MorphReport, morph_curves,
-};
+use immerse::morph::{Correspondence, Counts, CurveMorphOptions, Intermediate, MorphReport};
 use immerse::triangulate;
 use std::f64::consts::{PI, TAU};
 use std::fmt::Write as _;
@@ -1028,7 +1026,7 @@ pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
     }
 }
 
-/// Morphs the pair and checks it: `morph_curves` returns Ok, there is one
+/// Morphs the pair and checks it: `morph_pair` returns Ok, there is one
 /// frame per fraction, every frame passes the exact immersion check, the
 /// first frame is the source after count equalisation (with insertion, the
 /// source's own vertices appear exactly, in cyclic order, from vertex 0)
@@ -1038,7 +1036,7 @@ pub fn run_pair(pair: &Pair) -> Result<Outcome, Failure> {
     let options = pair.options.curve_options();
     let fractions = pair.options.fractions();
     let (a, b) = (&pair.source, &pair.target);
-    let result = std::panic::catch_unwind(|| morph_curves(a, b, &fractions, &options));
+    let result = std::panic::catch_unwind(|| crate::morph_pair(a, b, &fractions, &options));
     let (report, morph) = match result {
         Err(payload) => return Err(Failure::new("panic", panic_message(payload.as_ref()))),
         Ok(Err(e)) => return Err(Failure::new("error", e.to_string())),

@@ -8,7 +8,8 @@ use immerse::Curve;
 use immerse::check;
 use immerse::frames::Frame;
 use immerse::geom::Point;
-use immerse::morph::{CurveMorphOptions, Tween, morph_curves};
+use immerse::morph::{CurveMorphOptions, Tween};
+use testkit::morph_pair;
 
 use pairs::reference_pairs;
 use testkit::pairs;
@@ -69,7 +70,7 @@ fn reference_pairs_morph_with_every_frame_an_immersion() {
         let (sa, sb) = (sa.as_str(), sb.as_str());
         let (a, b) = (load(sa), load(sb));
         // 40 displacement-timed frames.
-        let (report, m40) = morph_curves(&a.points, &b.points, &fractions(40), &options)
+        let (report, m40) = morph_pair(&a.points, &b.points, &fractions(40), &options)
             .unwrap_or_else(|e| panic!("{sa} -> {sb}: {e}"));
         assert_eq!(m40.frames.len(), 40);
         for f in &m40.frames {
@@ -112,7 +113,7 @@ fn reference_pairs_morph_with_every_frame_an_immersion() {
             );
         }
         // 400 dense values.
-        let (_, m400) = morph_curves(&a.points, &b.points, &fractions(400), &options).unwrap();
+        let (_, m400) = morph_pair(&a.points, &b.points, &fractions(400), &options).unwrap();
         for f in &m400.frames {
             assert!(
                 check(&f.points, &f.triangles).is_ok(),
@@ -132,7 +133,7 @@ fn the_hybrid_route_keeps_the_total_area_in_the_fitted_range() {
         .with_morph(MorphOptions::DEFAULT.with_path(ThirdVertexPath::Hybrid));
     for (sa, sb) in &reference_pairs() {
         let (a, b) = (load(sa), load(sb));
-        let (_, m) = morph_curves(&a.points, &b.points, &fractions(40), &options)
+        let (_, m) = morph_pair(&a.points, &b.points, &fractions(40), &options)
             .unwrap_or_else(|e| panic!("{sa} -> {sb}: {e}"));
         let (a0, a1) = (area(&m.frames[0]), area(&m.frames[39]));
         // The range of every fitted path (STRAIGHT_AREA_RANGE); frames
@@ -158,8 +159,8 @@ fn morph_backwards_is_the_same_sequence_reversed() {
         let (sa, sb) = (sa.as_str(), sb.as_str());
         let (a, b) = (load(sa), load(sb));
         let fr = fractions(41);
-        let (ra, ab) = morph_curves(&a.points, &b.points, &fr, &options).unwrap();
-        let (rb, ba) = morph_curves(&b.points, &a.points, &fr, &options).unwrap();
+        let (ra, ab) = morph_pair(&a.points, &b.points, &fr, &options).unwrap();
+        let (rb, ba) = morph_pair(&b.points, &a.points, &fr, &options).unwrap();
         // NaN for a side that was not finished, in both directions.
         let bits = |x: f64, y: f64| (x.to_bits(), y.to_bits());
         assert_eq!(
@@ -198,7 +199,7 @@ fn the_disk_route_is_valid_and_symmetric_too() {
     for (sa, sb) in &reference_pairs() {
         let (sa, sb) = (sa.as_str(), sb.as_str());
         let (a, b) = (load(sa), load(sb));
-        let (ra, ab) = morph_curves(&a.points, &b.points, &fractions(400), &options).unwrap();
+        let (ra, ab) = morph_pair(&a.points, &b.points, &fractions(400), &options).unwrap();
         assert!(ra.used_disk);
         for f in &ab.frames {
             assert!(
@@ -207,7 +208,7 @@ fn the_disk_route_is_valid_and_symmetric_too() {
                 f.t
             );
         }
-        let (_, ba) = morph_curves(&b.points, &a.points, &fractions(400), &options).unwrap();
+        let (_, ba) = morph_pair(&b.points, &a.points, &fractions(400), &options).unwrap();
         let (n, k) = (ra.n, ra.shift);
         let tol = 1e-9 * diag(&a.points).max(diag(&b.points));
         for (j, f) in ab.frames.iter().enumerate() {
@@ -228,7 +229,7 @@ fn the_target_route_needs_no_disk_on_the_reference_pairs() {
     let mut disk = Vec::new();
     for (sa, sb) in reference_pairs() {
         let (a, b) = (load(&sa), load(&sb));
-        let (r, _) = morph_curves(&a.points, &b.points, &fractions(10), &options).unwrap();
+        let (r, _) = morph_pair(&a.points, &b.points, &fractions(10), &options).unwrap();
         if r.used_disk {
             disk.push((sa, sb));
         }
@@ -243,8 +244,8 @@ fn the_best_correspondence_is_symmetric() {
     let fr = fractions(21);
     for (sa, sb) in reference_pairs().into_iter().take(8) {
         let (a, b) = (load(&sa), load(&sb));
-        let (ra, ab) = morph_curves(&a.points, &b.points, &fr, &best).unwrap();
-        let (rb, ba) = morph_curves(&b.points, &a.points, &fr, &best).unwrap();
+        let (ra, ab) = morph_pair(&a.points, &b.points, &fr, &best).unwrap();
+        let (rb, ba) = morph_pair(&b.points, &a.points, &fr, &best).unwrap();
         assert_eq!((ra.shift + rb.shift) % ra.n, 0, "{sa} {sb}");
         let (n, k) = (ra.n, ra.shift);
         for (j, f) in ab.frames.iter().enumerate() {
@@ -391,7 +392,7 @@ fn the_result_does_not_depend_on_the_number_of_cores() {
             .num_threads(threads)
             .build()
             .unwrap();
-        let (report, m) = pool.install(|| morph_curves(a, b, &fr, &options)).unwrap();
+        let (report, m) = pool.install(|| morph_pair(a, b, &fr, &options)).unwrap();
         let frames: Vec<Vec<(u64, u64)>> = m
             .frames
             .iter()
@@ -431,16 +432,16 @@ fn the_corners_rule_matches_strip_edges_and_says_when_it_cannot() {
         load("spiral-strip-720deg-n200.json"),
         load("spiral-strip-1080deg-n400.json"),
     );
-    let (report, m) = morph_curves(&a.points, &b.points, &fractions(21), &options).unwrap();
+    let (report, m) = morph_pair(&a.points, &b.points, &fractions(21), &options).unwrap();
     assert_eq!(report.flips, 0, "{report:?}");
     assert!(report.fallbacks.is_empty(), "{:?}", report.fallbacks);
     for f in &m.frames {
         assert!(check(&f.points, &f.triangles).is_ok(), "t = {}", f.t);
     }
-    let (back, _) = morph_curves(&b.points, &a.points, &fractions(21), &options).unwrap();
+    let (back, _) = morph_pair(&b.points, &a.points, &fractions(21), &options).unwrap();
     assert_eq!((report.shift + back.shift) % report.n, 0);
     let (t, s) = (load("triangle.json"), load("square.json"));
-    let (report, m) = morph_curves(&t.points, &s.points, &fractions(11), &options).unwrap();
+    let (report, m) = morph_pair(&t.points, &s.points, &fractions(11), &options).unwrap();
     assert!(
         report
             .fallbacks

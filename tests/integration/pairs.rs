@@ -7,7 +7,7 @@
 use immerse::Curve;
 use immerse::check;
 use immerse::frames::Frame;
-use immerse::morph::{MorphOptions, ThirdVertexPath, morph_compatible};
+use immerse::morph::{Compatible, MorphError, MorphOptions, ThirdVertexPath};
 use immerse::{Quality, triangulate_with};
 
 use crate::util::curves_dir;
@@ -91,14 +91,11 @@ fn guaranteed_paths_give_immersions_between_the_pairs() {
         .total_area();
         let (lo, hi) = (a0.min(a1) * AREA_RANGE.0, a0.max(a1) * AREA_RANGE.1);
         for path in [ThirdVertexPath::Hybrid, ThirdVertexPath::Angle] {
-            let m = morph_compatible(
-                &src.points,
-                &dst.points,
-                &tri,
-                &times,
-                &MorphOptions::DEFAULT.with_path(path),
-            )
-            .unwrap_or_else(|e| panic!("{name} {path}: {e}"));
+            let o = MorphOptions::DEFAULT;
+            let m = Compatible::new(&src.points, &dst.points, &tri, o.root, o.fan_margin)
+                .map_err(MorphError::from)
+                .and_then(|plan| plan.morph(&times, path))
+                .unwrap_or_else(|e| panic!("{name} {path}: {e}"));
             assert_eq!(m.paths, [path], "{name}");
             assert!(!m.fallback, "{name} {path}");
             assert_eq!(m.frames.len(), 200);

@@ -337,15 +337,16 @@ proptest! {
         b in disks(),
         disk_route in any::<bool>(),
     ) {
-        use immerse::morph::{CurveMorphOptions, Intermediate, morph_curves};
+        use immerse::morph::{CurveMorphOptions, Intermediate};
+        use testkit::morph_pair;
         let options = CurveMorphOptions::DEFAULT.with_intermediate(if disk_route {
             Intermediate::Disk
         } else {
             Intermediate::Target
         });
         let fr: Vec<f64> = (0..=24).map(|i| f64::from(i) / 24.0).collect();
-        let (ra, ab) = morph_curves(&a.points, &b.points, &fr, &options).unwrap();
-        let (rb, ba) = morph_curves(&b.points, &a.points, &fr, &options).unwrap();
+        let (ra, ab) = morph_pair(&a.points, &b.points, &fr, &options).unwrap();
+        let (rb, ba) = morph_pair(&b.points, &a.points, &fr, &options).unwrap();
         for f in &ab.frames {
             prop_assert_eq!(check(&f.points, &f.triangles), Ok(()), "t = {}", f.t);
         }

@@ -8,8 +8,9 @@ use crate::util::{LAST_LEG_RIVALS, assert_stderr, curve, immerse, immerse_in, st
 use immerse::Curve;
 use immerse::Point;
 use immerse::frames::Frame;
-use immerse::morph::{CurveMorphOptions, Tween, morph_curves};
+use immerse::morph::{CurveMorphOptions, Tween};
 use immerse::sequence::{Ease, Hint, HintAt, Key, Sequence, SequenceOptions, Timing, key_speeds};
+use testkit::morph_pair;
 
 fn load(name: &str) -> Curve {
     Curve::from_path(curve(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
@@ -44,16 +45,16 @@ const PAIRS: [(&str, &str); 5] = [
     ),
 ];
 
-/// The Tween gives bit for bit the frames of `morph_curves`, and a frame
-/// at t is the same asked alone, in a batch, or in another order.
+/// A Tween planned again gives bit for bit the same frames, and a frame at
+/// t is the same asked alone, in a batch, or in another order.
 #[test]
-fn tween_frames_are_morph_curves_frames_alone_or_in_a_batch() {
+fn tween_frames_are_the_same_planned_again_alone_or_in_a_batch() {
     let ts: Vec<f64> = (0..=24).map(|i| f64::from(i) / 24.0).collect();
     for (sa, sb) in PAIRS {
         let (a, b) = (load(sa), load(sb));
         let tween = Tween::new(&a.points, &b.points, &CurveMorphOptions::DEFAULT).unwrap();
         let (report, batch) =
-            morph_curves(&a.points, &b.points, &ts, &CurveMorphOptions::DEFAULT).unwrap();
+            morph_pair(&a.points, &b.points, &ts, &CurveMorphOptions::DEFAULT).unwrap();
         assert_eq!(report.shift, tween.report().shift, "{sa} -> {sb}");
         assert_eq!(batch.frames.len(), ts.len());
         let own = tween.morph(&ts).unwrap();

@@ -7,7 +7,7 @@ use crate::args::{DemoArgs, FormatArg};
 use crate::output;
 use anyhow::Context;
 use immerse::frames::metrics;
-use immerse::morph::{CurveMorphOptions, morph_curves};
+use immerse::morph::{CurveMorphOptions, Tween};
 use immerse::{Curve, curve::Format};
 use immerse_render as render;
 use std::path::Path;
@@ -36,13 +36,12 @@ pub(crate) fn run(args: &DemoArgs) -> anyhow::Result<Outcome> {
     let src = Curve::from_bytes(SOURCE.as_bytes(), Format::Svg, "ribbon-curl.svg", "ribbon")?;
     let dst = Curve::from_bytes(TARGET.as_bytes(), Format::Svg, "tail-loop.svg", "tail")?;
     let times = render::frame_times(args.frames as usize, &render::Easing::EaseInOut);
-    let (report, morph) = morph_curves(
-        &src.points,
-        &dst.points,
-        &times,
-        &CurveMorphOptions::DEFAULT,
-    )
-    .context("the embedded demo curves did not morph; this is a bug in immerse")?;
+    let tween = Tween::new(&src.points, &dst.points, &CurveMorphOptions::DEFAULT)
+        .context("the embedded demo curves did not morph; this is a bug in immerse")?;
+    let morph = tween
+        .morph(&times)
+        .context("the embedded demo curves did not morph; this is a bug in immerse")?;
+    let report = tween.report();
     render::write_atomic(&dir.join(MARKER), b"written by immerse demo\n", true)?;
     let frames = super::render_frames(&morph.frames);
     let writing = Writing {

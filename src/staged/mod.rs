@@ -400,21 +400,23 @@ impl Leg {
     /// (non-decreasing).
     /// Returns how many segments were certified so.
     pub(crate) fn certify_off_path(&mut self, tol: f64) -> (usize, usize) {
-        use rayon::prelude::*;
         if self.certified.iter().all(|&c| c) {
             return (0, 0);
         }
         let (tris, margin) = (self.plan.triangles(), self.plan.fan_margin());
+        // One budget for the leg's searches, spent in the order of its
+        // segments.
+        let budget = off_path::Budget::new(off_path::MAX_LEG_WORK);
         // Per segment certified so: its new keys and their parameters.
         type Found = (usize, Vec<(f64, Vec<Point>)>);
         let found: Vec<Found> = self
             .certified
-            .par_iter()
+            .iter()
             .enumerate()
             .filter(|&(_, &c)| !c)
             .filter_map(|(k, _)| {
                 let (a, b) = (&self.keys[k], &self.keys[k + 1]);
-                let inner = off_path::off_path_keys(a, b, tris, margin, tol)?;
+                let inner = budget.search(a, b, tris, margin, tol)?;
                 // Parameters spaced evenly inside the segment's, in order
                 // (some equal where the segment spans fewer doubles than
                 // it gets keys: frames are timed by the keys' moves, and
@@ -425,7 +427,7 @@ impl Leg {
             })
             .collect();
         if found.is_empty() {
-            let across = self.certify_across_keys(tol);
+            let across = self.certify_across_keys(tol, &budget);
             return (across, across);
         }
         let count = found.len();
@@ -459,7 +461,7 @@ impl Leg {
         self.certified = certified;
         self.repaired = repaired;
         self.set_travel();
-        let across = self.certify_across_keys(tol);
+        let across = self.certify_across_keys(tol, &budget);
         (count + across, across)
     }
 
@@ -471,7 +473,7 @@ impl Leg {
     /// pass through that key may hold. The keys skipped must lie within
     /// `tol` of the wider chord, and so must the bridge's. Returns how many
     /// segments were certified so.
-    fn certify_across_keys(&mut self, tol: f64) -> usize {
+    fn certify_across_keys(&mut self, tol: f64, budget: &off_path::Budget) -> usize {
         if self.certified.iter().all(|&c| c) {
             return 0;
         }
@@ -501,7 +503,7 @@ impl Leg {
                             .all(|p| off_path::near_chord(&keys[lo], &keys[hi], tol, p))
                 })
                 .find_map(|(lo, hi)| {
-                    let inner = off_path::off_path_keys(&keys[lo], &keys[hi], tris, margin, tol)?;
+                    let inner = budget.search(&keys[lo], &keys[hi], tris, margin, tol)?;
                     Some((lo, hi, inner))
                 });
             let Some((lo, hi, inner)) = found else {

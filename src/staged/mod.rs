@@ -400,32 +400,43 @@ impl Leg {
     /// (non-decreasing).
     /// Returns how many segments were certified so.
     pub(crate) fn certify_off_path(&mut self, tol: f64) -> (usize, usize) {
+        use rayon::prelude::*;
         if self.certified.iter().all(|&c| c) {
             return (0, 0);
         }
         let (tris, margin) = (self.plan.triangles(), self.plan.fan_margin());
-        // One budget for the leg's searches, spent in the order of its
-        // segments.
-        let budget = off_path::Budget::new(off_path::MAX_LEG_WORK);
+        // The searches that fail spend one budget for the leg, in the
+        // order of its segments, a batch searched side by side at a time.
+        let budget = off_path::Budget::new();
+        let open: Vec<usize> = (0..self.certified.len())
+            .filter(|&k| !self.certified[k])
+            .collect();
         // Per segment certified so: its new keys and their parameters.
         type Found = (usize, Vec<(f64, Vec<Point>)>);
-        let found: Vec<Found> = self
-            .certified
-            .iter()
-            .enumerate()
-            .filter(|&(_, &c)| !c)
-            .filter_map(|(k, _)| {
-                let (a, b) = (&self.keys[k], &self.keys[k + 1]);
-                let inner = budget.search(a, b, tris, margin, tol)?;
+        let mut found: Vec<Found> = Vec::new();
+        for batch in open.chunks(off_path::SEARCH_BATCH) {
+            if budget.is_spent() {
+                break;
+            }
+            let searched: Vec<_> = batch
+                .par_iter()
+                .map(|&k| {
+                    let (a, b) = (&self.keys[k], &self.keys[k + 1]);
+                    off_path::search(a, b, tris, margin, tol)
+                })
+                .collect();
+            for (&k, result) in batch.iter().zip(searched) {
+                let Some(inner) = budget.count(result) else {
+                    continue;
+                };
                 // Parameters spaced evenly inside the segment's, in order
                 // (some equal where the segment spans fewer doubles than
                 // it gets keys: frames are timed by the keys' moves, and
                 // the parameter only places the path's recovery).
                 let params = even_params(self.samples[k], self.samples[k + 1], inner.len());
-                let keyed = params.into_iter().zip(inner).collect();
-                Some((k, keyed))
-            })
-            .collect();
+                found.push((k, params.into_iter().zip(inner).collect()));
+            }
+        }
         if found.is_empty() {
             let across = self.certify_across_keys(tol, &budget);
             return (across, across);
@@ -502,8 +513,10 @@ impl Leg {
                             .iter()
                             .all(|p| off_path::near_chord(&keys[lo], &keys[hi], tol, p))
                 })
+                .take_while(|_| !budget.is_spent())
                 .find_map(|(lo, hi)| {
-                    let inner = budget.search(&keys[lo], &keys[hi], tris, margin, tol)?;
+                    let inner =
+                        budget.count(off_path::search(&keys[lo], &keys[hi], tris, margin, tol))?;
                     Some((lo, hi, inner))
                 });
             let Some((lo, hi, inner)) = found else {

@@ -46,16 +46,16 @@ const MAX_KEYS: [usize; 2] = [1 << 12, 1 << 14];
 /// Most exact segment certificates the search for one segment's keys may
 /// take, over both routes and both key bounds: past it the segment is left
 /// uncertified (its frames are still checked exactly). On the CI's 2,000
-/// stress pairs the largest search takes 49,817 (a needle bridged by its
-/// rigid path); of 2,000 pairs of seed 0xbee5 one search goes past it
-/// (pair 1552: 383,438, for about 5,000 keys on one segment).
-pub(crate) const MAX_WORK: usize = 1 << 16;
+/// stress pairs the largest search takes 49,817; on 2,000 pairs of seed
+/// 0xbee5, 383,438 (pair 1552: a needle 4·10⁻⁵ wide moved 27 units,
+/// about 5,000 keys on one segment).
+pub(crate) const MAX_WORK: usize = 1 << 19;
 
 /// Most certificates one leg's searches that fail may take in all, in the
 /// order of its segments: past it the leg's segments left are not
-/// searched (a leg whose searches keep failing is given up after about
-/// four; searches that succeed are not counted, however many).
-pub(crate) const MAX_FAILED_WORK: usize = 1 << 18;
+/// searched (a leg whose searches keep failing is given up after two at
+/// least; searches that succeed are not counted, however many).
+pub(crate) const MAX_FAILED_WORK: usize = 1 << 20;
 
 /// Segments searched side by side, a batch at a time, so that where the
 /// searches stop never depends on the number of cores.

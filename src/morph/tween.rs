@@ -30,23 +30,14 @@ use crate::morph::{Intermediate, MorphError, MorphOptions, Staged, ThirdVertexPa
 use crate::staged::{KEY_AREA_TOLERANCE, Leg, moves};
 use std::cell::OnceCell;
 
-/// One key of a morph's animation: the shape at fraction `t` of the pace
-/// and the triangulation of the segment that follows it (for the last
-/// key, the one of the segment before it, valid at it). Between two keys
-/// every vertex moves on a straight line at constant speed; a flip is one
-/// key, written with the triangulation after the flip (docs/design.md §12
-/// and §13).
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct Keyframe {
-    /// Where the key is, in [0, 1]: 0 for the first, 1 for the last,
-    /// strictly increasing.
-    pub t: f64,
-    /// The shape (vertex `i` is vertex `i` of every frame).
-    #[serde(serialize_with = "crate::morph::output::ser_points")]
-    pub points: Vec<Point>,
-    /// The triangulation of the segment from this key to the next.
-    pub triangles: Vec<[u32; 3]>,
-}
+/// One key of a morph's animation, a [`Frame`] read as a key: the shape at
+/// fraction `t` of the pace (0 for the first key, 1 for the last, strictly
+/// increasing) and the triangulation of the segment that follows it (for
+/// the last key, the one of the segment before it, valid at it). Between
+/// two keys every vertex moves on a straight line at constant speed; a
+/// flip is one key, written with the triangulation after the flip
+/// (docs/design.md §12 and §13).
+pub type Keyframe = Frame;
 
 /// The unwind below which a rigid morph is raced by the straight one
 /// ([`Tween::new`]): the gate of docs/design.md §7c.
@@ -173,21 +164,20 @@ impl Tween {
                 let across = match across {
                     0 => String::new(),
                     n => format!(
-                        " ({n} by a bridge across the key{} beside {})",
-                        if n == 1 { "" } else { "s" },
-                        if n == 1 { "it" } else { "them" }
+                        " ({n} by a bridge across the {} beside {})",
+                        noun(n, "key", "keys"),
+                        them(n)
                     ),
                 };
+                let (segments, them) = (noun(count, "segment", "segments"), them(count));
                 self.report.fallbacks.push(Fallback::new(
                     &format!(
-                        "certified {count} segment{} of leg {} by keys off its path{across}",
-                        if count == 1 { "" } else { "s" },
+                        "certified {count} {segments} of leg {} by keys off its path{across}",
                         j + 1
                     ),
                     &format!(
-                        "neither keys taken from the {} path nor a flip of the triangulation certified {}, and no other route qualified: a feature a few units in the last place wide moves too far between two keys",
-                        leg.path,
-                        if count == 1 { "it" } else { "them" }
+                        "neither keys taken from the {} path nor a flip of the triangulation certified {them}, and no other route qualified: a feature a few units in the last place wide moves too far between two keys",
+                        leg.path
                     ),
                 ));
             }
@@ -522,16 +512,15 @@ impl Tween {
         fallbacks.extend(staged.fallbacks.iter().cloned());
         for ((j, &count), leg) in bridges.iter().enumerate().zip(&staged.legs) {
             if count > 0 {
+                let (stretches, them) = (noun(count, "stretch", "stretches"), them(count));
                 fallbacks.push(Fallback::new(
                     &format!(
-                        "placed the keys of {count} stretch{} of leg {} on the straight path between two checked samples",
-                        if count == 1 { "" } else { "es" },
+                        "placed the keys of {count} {stretches} of leg {} on the straight path between two checked samples",
                         j + 1
                     ),
                     &format!(
-                        "the {} path is not an immersion anywhere inside {}: the layout's rounding turns a thin triangle over",
-                        leg.path,
-                        if count == 1 { "it" } else { "them" }
+                        "the {} path is not an immersion anywhere inside {them}: the layout's rounding turns a thin triangle over",
+                        leg.path
                     ),
                 ));
             }
@@ -1312,6 +1301,16 @@ pub(crate) fn strictly_increasing(keys: &mut [Keyframe]) {
 /// How many keys past an uncertified segment [`merge_keys`] looks for a
 /// certified chord over it: a bound on the work.
 const BRIDGE_REACH: usize = 64;
+
+/// `one` or `many`, as `count` asks (for the report's sentences).
+fn noun<'a>(count: usize, one: &'a str, many: &'a str) -> &'a str {
+    if count == 1 { one } else { many }
+}
+
+/// The pronoun that stands for `count` things: "it" or "them".
+fn them(count: usize) -> &'static str {
+    noun(count, "it", "them")
+}
 
 /// Drops the keys of `leg` that a straight segment does not need: greedily
 /// from each kept key, the farthest later key such that the straight

@@ -427,27 +427,11 @@ impl Compatible {
         root: RootChoice,
         fan_margin: f64,
     ) -> Result<Compatible, CompatibleError> {
-        Compatible::rooted(src, dst, triangles, root.into(), fan_margin)
-    }
-
-    /// [`Compatible::new`] with the propagation rooted as `root` says
-    /// (a [`RootChoice`], or a given triangle of `triangles`).
-    ///
-    /// # Errors
-    ///
-    /// As [`Compatible::new`].
-    pub(crate) fn rooted(
-        src: &[Point],
-        dst: &[Point],
-        triangles: &[[u32; 3]],
-        root: Root,
-        fan_margin: f64,
-    ) -> Result<Compatible, CompatibleError> {
         if src.len() != dst.len() {
             return Err(CompatibleError::Counts(src.len(), dst.len()));
         }
         let tree = DualTree::new(src.len(), triangles)?;
-        Compatible::on_tree(src, dst, &tree, root, fan_margin)
+        Compatible::on_tree(src, dst, &tree, root.into(), fan_margin)
     }
 
     /// [`Compatible::new`] with the dual tree of the triangulation already
@@ -1512,9 +1496,13 @@ pub(crate) mod tests {
             {
                 let plan = match root {
                     None => Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN),
-                    Some(t) => {
-                        Compatible::rooted(&a, &b, &tris, Root::Triangle(t), DEFAULT_FAN_MARGIN)
-                    }
+                    Some(t) => Compatible::on_tree(
+                        &a,
+                        &b,
+                        &DualTree::new(a.len(), &tris).unwrap(),
+                        Root::Triangle(t),
+                        DEFAULT_FAN_MARGIN,
+                    ),
                 }
                 .unwrap();
                 assert_eq!(plan.rooted.root, root.unwrap_or(plan.rooted.root));
@@ -1641,14 +1629,19 @@ pub(crate) mod tests {
         crate::geom::polygon::bbox_diagonal(p)
     }
 
+    /// The plan of `a` → `b` on `tris`, rooted at the disk's centre with
+    /// the default fan margin (the pair must be valid).
+    fn disk_plan(a: &[Point], b: &[Point], tris: &[[u32; 3]]) -> Compatible {
+        Compatible::new(a, b, tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).expect("a valid pair")
+    }
+
     #[test]
     fn a_plan_built_again_from_its_seed_is_the_same_bit_for_bit() {
         let mut rng = Rng(0x9e1ea5e);
         let mut used = 0;
         for round in 0..20 {
             let (_, tris, a, b) = random_pair(&mut rng, 6, 30.0);
-            let mut plan =
-                Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
+            let mut plan = disk_plan(&a, &b, &tris);
             // What the staged route changes after building: a guide's end
             // (every other pair) and an area range that binds.
             let end: Option<std::sync::Arc<[Point]>> =
@@ -1715,7 +1708,7 @@ pub(crate) mod tests {
         // A guide found unusable stays so: the plan built again is guided
         // by the straight guide, as the first was, without solving again.
         let (_, tris, a, b) = random_pair(&mut rng, 6, 30.0);
-        let plan = Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
+        let plan = disk_plan(&a, &b, &tris);
         plan.rigid.set(None).unwrap();
         let again = plan.seed().build().unwrap();
         assert!(!again.has_rigid_guide());
@@ -1737,8 +1730,7 @@ pub(crate) mod tests {
         let mut rng = Rng(0x1234567);
         for _ in 0..20 {
             let (_, tris, a, b) = random_pair(&mut rng, 6, 30.0);
-            let plan =
-                Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
+            let plan = disk_plan(&a, &b, &tris);
             let diag = bbox_diag(&a).max(bbox_diag(&b));
             // Halving the step roughly halves the largest move: no jumps.
             let max_step = |steps: usize, path: ThirdVertexPath| {
@@ -1832,8 +1824,7 @@ pub(crate) mod tests {
                 a0.min(a1) * STRAIGHT_AREA_RANGE.0,
                 a0.max(a1) * STRAIGHT_AREA_RANGE.1,
             );
-            let plan =
-                Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
+            let plan = disk_plan(&a, &b, &tris);
             let diag = bbox_diag(&a).max(bbox_diag(&b));
             for path in [ThirdVertexPath::Angle, ThirdVertexPath::Hybrid] {
                 for i in 1..20 {
@@ -1882,8 +1873,7 @@ pub(crate) mod tests {
                 .iter()
                 .map(|p| Point::from_angle(theta).rotate(*p))
                 .collect();
-            let plan =
-                Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
+            let plan = disk_plan(&a, &b, &tris);
             for t in [0.25, 0.5, 0.75] {
                 let got = plan.positions(t, ThirdVertexPath::Polar);
                 // About the vertex mean, which moves straight.
@@ -1954,7 +1944,7 @@ pub(crate) mod tests {
             .map(f64::from)
             .min_by(|x, y| moved(*x).total_cmp(&moved(*y)))
             .unwrap();
-        let plan = Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
+        let plan = disk_plan(&a, &b, &tris);
         let diag = bbox_diag(&a).max(bbox_diag(&b));
         let travel = |path: ThirdVertexPath| -> f64 {
             let mut prev = a.clone();
@@ -2038,8 +2028,7 @@ pub(crate) mod tests {
             if !margins {
                 continue;
             }
-            let plan =
-                Compatible::new(&a, &b, &tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).unwrap();
+            let plan = disk_plan(&a, &b, &tris);
             // With the guide's rotation taken out (it is tiny here), the
             // straight frames are the linear ones.
             for i in 1..20 {

@@ -31,7 +31,7 @@ use crate::geom::Point;
 use crate::immersion::{CheckedTriangles, check_triangles};
 use crate::propagate::compatible::Compatible;
 use crate::propagate::paths::ThirdVertexPath;
-use crate::tree::{Root, RootChoice};
+use crate::tree::{DualTree, Root, RootChoice};
 
 /// Deepest split of a bridge, in its own parameter (a bridge spans one
 /// segment of the leg, itself down to 2⁻⁴⁴ of the leg).
@@ -245,15 +245,15 @@ impl Gap<'_> {
         paths: &[ThirdVertexPath],
         most: usize,
     ) -> Option<Vec<Vec<Point>>> {
+        let tree = DualTree::new(self.a.len(), self.tris.triangles()).ok()?;
+        let root = root.map_or(Root::Choice(RootChoice::Disk), Root::Triangle);
         for back in [false, true] {
             let (from, to) = if back {
                 (self.b, self.a)
             } else {
                 (self.a, self.b)
             };
-            let (tris, margin) = (self.tris.triangles(), self.fan_margin);
-            let root = root.map_or(Root::Choice(RootChoice::Disk), Root::Triangle);
-            let plan = Compatible::rooted(from, to, tris, root, margin);
+            let plan = Compatible::on_tree(from, to, &tree, root, self.fan_margin);
             let Ok(plan) = plan else {
                 continue;
             };

@@ -613,6 +613,95 @@ pub(crate) fn sides(
     sides_beside(p, k, options, give_up_past, || ()).0
 }
 
+/// What both sides of one plan are built from: the curves in each
+/// side's labels, the paths and the bounds on angles and steps.
+struct SidePair<'p> {
+    p: &'p Prepared,
+    b_in_a: Vec<Point>,
+    tb_in_a: Vec<[u32; 3]>,
+    a_in_b: Vec<Point>,
+    ta_in_b: Vec<[u32; 3]>,
+    options: &'p CurveMorphOptions,
+    leg_path: ThirdVertexPath,
+    floor: f64,
+    max_step: f64,
+}
+
+impl<'p> SidePair<'p> {
+    /// The sides of `p` at the shift `k` (`b[(i + k) % n]` corresponds to
+    /// `a[i]`).
+    fn new(p: &'p Prepared, k: usize, options: &'p CurveMorphOptions) -> SidePair<'p> {
+        let (a, b, ta, tb) = (&p.a, &p.b, &p.ta, &p.tb);
+        let n = a.len();
+        let m = &options.morph;
+        let diag = crate::geom::polygon::bbox_diagonal;
+        SidePair {
+            p,
+            b_in_a: (0..n).map(|i| b[(i + k) % n]).collect(),
+            tb_in_a: shift_triangles(n, tb, k),
+            a_in_b: (0..n).map(|j| a[(j + n - k) % n]).collect(),
+            ta_in_b: shift_triangles(n, ta, (n - k) % n),
+            options,
+            leg_path: if m.path.is_guaranteed() {
+                m.path
+            } else {
+                ThirdVertexPath::Hybrid
+            },
+            floor: 0.25 * min_angle(a, ta).min(min_angle(b, tb)),
+            max_step: diag(a).max(diag(b)) / SAMPLES_PER_DIAGONAL,
+        }
+    }
+
+    /// Whether the side from `a` leads the race: its curve is first by
+    /// coordinates.
+    fn a_leads(&self) -> bool {
+        let lex = crate::geom::polygon::lex_key;
+        lex(&self.p.a) <= lex(&self.p.b)
+    }
+
+    /// The side from `a` (else from `b`) built under `limit`.
+    fn build(&self, from_a: bool, limit: Limit<'_>) -> (SideResult, Peak) {
+        let p = self.p;
+        let (s, t, o, to) = if from_a {
+            (&p.a[..], &p.ta[..], &self.b_in_a[..], &self.tb_in_a[..])
+        } else {
+            (&p.b[..], &p.tb[..], &self.a_in_b[..], &self.ta_in_b[..])
+        };
+        let m = &self.options.morph;
+        Staged::build(&SideInput {
+            s,
+            t_start: t,
+            other: o,
+            t_other: to,
+            leg_path: self.leg_path,
+            final_path: m.path,
+            rivals: m.rivals,
+            root: m.root,
+            margin: m.fan_margin,
+            intermediate: self.options.intermediate,
+            floor: self.floor,
+            max_step: self.max_step,
+            limit,
+        })
+    }
+}
+
+/// What a finished side gives the other side's limit: its travel (the
+/// lead's, for the follower), or its reach (the follower's, for the lead):
+/// the largest travel at which it went on, at least its travel.
+fn finished_at(built: &(SideResult, Peak), reach: bool) -> Option<f64> {
+    let (Ok(Some(st)), peak) = built else {
+        return None;
+    };
+    Some(if reach {
+        st.mean_travel()
+            .max(peak.went_on_walking)
+            .max(peak.went_on_last)
+    } else {
+        st.mean_travel()
+    })
+}
+
 /// [`sides`], with `beside` run next to them: the leading side and
 /// `beside` one after the other on one core and the following side on the
 /// other, so that whichever core finishes first takes `beside` over if the
@@ -624,63 +713,38 @@ fn sides_beside<R: Send>(
     give_up_past: f64,
     beside: impl FnOnce() -> R + Send,
 ) -> (Sides, R) {
-    let (a, b, ta, tb) = (&p.a, &p.b, &p.ta, &p.tb);
-    let n = a.len();
-    let m = &options.morph;
-    let floor = 0.25 * min_angle(a, ta).min(min_angle(b, tb));
-    let b_in_a: Vec<Point> = (0..n).map(|i| b[(i + k) % n]).collect();
-    let tb_in_a = shift_triangles(n, tb, k);
-    let a_in_b: Vec<Point> = (0..n).map(|j| a[(j + n - k) % n]).collect();
-    let ta_in_b = shift_triangles(n, ta, (n - k) % n);
-    let leg_path = if m.path.is_guaranteed() {
-        m.path
-    } else {
-        ThirdVertexPath::Hybrid
-    };
-    let diag = crate::geom::polygon::bbox_diagonal;
-    let max_step = diag(a).max(diag(b)) / SAMPLES_PER_DIAGONAL;
+    let pair = SidePair::new(p, k, options);
     // On the target route the sides race, in an order fixed by the
     // curves, so that what is kept never depends on timing (nor on which
-    // curve is the source): the side of the curve first by coordinates
-    // (the lead) is given up only past `give_up_past`; the other side (the
-    // follower) also once it travels farther than the lead's finished
-    // travel, as if it had started after the lead finished. The disk
-    // route picks a side by where it reaches the other triangulation, not
-    // by travel: nothing is given up there.
+    // curve is the source): what is kept is what building the side of the
+    // curve first by coordinates (the lead) given up only past
+    // `give_up_past`, then the other side (the follower) also given up
+    // once it travels farther than the lead's finished travel, would keep.
+    // Both are built at once: the follower is given up past the lead's
+    // travel once the lead has finished, and the lead once the travel it
+    // must at least end with passes the follower's reach, once the
+    // follower has finished ([`Limit::reach`]). The disk route picks a side by
+    // where it reaches the other triangulation, not by travel: nothing is
+    // given up there.
     let racing = options.intermediate == Intermediate::Target;
     let fixed = if racing { give_up_past } else { f64::INFINITY };
-    let lex = crate::geom::polygon::lex_key;
-    let a_leads = lex(a) <= lex(b);
+    let a_leads = pair.a_leads();
     let lead_done = AtomicU64::new(f64::INFINITY.to_bits());
-    let side = |from_a: bool, limit: Limit<'_>, done: Option<&AtomicU64>| {
-        let (s, t, o, to) = if from_a {
-            (&a[..], &ta[..], &b_in_a[..], &tb_in_a[..])
-        } else {
-            (&b[..], &tb[..], &a_in_b[..], &ta_in_b[..])
-        };
-        let built = Staged::build(&SideInput {
-            s,
-            t_start: t,
-            other: o,
-            t_other: to,
-            leg_path,
-            final_path: m.path,
-            rivals: m.rivals,
-            root: m.root,
-            margin: m.fan_margin,
-            intermediate: options.intermediate,
-            floor,
-            max_step,
-            limit,
-        });
-        if let (Ok(Some(st)), Some(done)) = (&built.0, done) {
-            done.store(st.mean_travel().to_bits(), Ordering::Relaxed);
+    let follow_done = AtomicU64::new(f64::INFINITY.to_bits());
+    // A side built under `limit`; when it finishes, `done` gets its travel,
+    // or with `reach` its reach ([`finished_at`]).
+    let side = |from_a: bool, limit: Limit<'_>, done: Option<(&AtomicU64, bool)>| {
+        let built = pair.build(from_a, limit);
+        if let Some((done, reach)) = done
+            && let Some(v) = finished_at(&built, reach)
+        {
+            done.store(v.to_bits(), Ordering::Relaxed);
         }
         built
     };
-    let follow_limit = Limit {
-        fixed,
-        rival: racing.then_some(&lead_done),
+    let travel = |s: &SideResult| match s {
+        Ok(Some(s)) => s.mean_travel(),
+        Ok(None) | Err(_) => f64::INFINITY,
     };
     // The lead first, then the follower, which on one core starts with
     // the lead's travel as its limit; `beside` is taken first by an idle
@@ -689,16 +753,26 @@ fn sides_beside<R: Send>(
     let (((lead, lead_peak), (follow, follow_peak)), r) = rayon::join(
         || {
             rayon::join(
-                || side(a_leads, Limit::fixed(fixed), Some(&lead_done)),
-                || side(!a_leads, follow_limit, None),
+                || {
+                    let limit = Limit {
+                        fixed,
+                        rival: None,
+                        reach: racing.then_some(&follow_done),
+                    };
+                    side(a_leads, limit, Some((&lead_done, false)))
+                },
+                || {
+                    let limit = Limit {
+                        fixed,
+                        rival: racing.then_some(&lead_done),
+                        reach: None,
+                    };
+                    side(!a_leads, limit, Some((&follow_done, true)))
+                },
             )
         },
         beside,
     );
-    let travel = |s: &SideResult| match s {
-        Ok(Some(s)) => s.mean_travel(),
-        Ok(None) | Err(_) => f64::INFINITY,
-    };
     // A side whose travel (or, if it failed, whose travel when it last
     // consulted its limit) passes `limit` is given up.
     let settle = |s: SideResult, peak: Peak, limit: f64| -> SideResult {
@@ -745,7 +819,7 @@ fn sides_beside<R: Send>(
     let use_a = match key(&side_a).total_cmp(&key(&side_b)) {
         std::cmp::Ordering::Less => true,
         std::cmp::Ordering::Greater => false,
-        std::cmp::Ordering::Equal => lex(a) <= lex(b),
+        std::cmp::Ordering::Equal => a_leads,
     };
     let sides = Sides {
         k,
@@ -952,4 +1026,113 @@ pub(crate) fn plan(
             if t < best.0 { (t, candidate) } else { best }
         });
     Ok(best.1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The benchmark's spiral ↔ blob pair: a spiral strip of `n` vertices
+    /// wound `turns` times (it overlaps itself) and a star-shaped blob.
+    fn spiral_blob(n: usize, turns: f64) -> (Vec<Point>, Vec<Point>) {
+        let spiral = testkit::shapes::spiral_strip(n / 2, turns, 0.3).0;
+        let blob = (0..n)
+            .map(|i| {
+                let f = std::f64::consts::TAU * i as f64 / n as f64;
+                let r = 1.2 * (1.0 + 0.2 * (3.0 * f + 0.4).cos() + 0.1 * (5.0 * f + 1.3).cos());
+                Point::from_angle(f) * r
+            })
+            .collect();
+        (spiral, blob)
+    }
+
+    /// The lead is given up by the follower's reach R only where building
+    /// it alone keeps the same (docs/design.md §7, the race of a plan's
+    /// two sides): alone it then travels farther than R, or is given up
+    /// or fails; where R does not give it up, it is built bit for bit as
+    /// alone. Each rule's plan of each pair is checked with R the reach
+    /// of the follower built first, as when it finishes before the lead.
+    #[test]
+    fn the_lead_is_given_up_by_the_followers_reach_only_where_it_would_lose() {
+        let options = CurveMorphOptions::DEFAULT;
+        let inf = || AtomicU64::new(f64::INFINITY.to_bits());
+        let (mut given_up, mut kept) = (0, 0);
+        for (n, turns) in [(160, 1.5), (240, 2.0), (320, 2.0)] {
+            let (a, b) = spiral_blob(n, turns);
+            let tri = Triangulations::new(&a, &b, options.quality);
+            for rule in [Correspondence::Outline, Correspondence::MinFlips] {
+                let p = prepare(&tri, options.counts, rule).expect("the pair prepares");
+                let k = p
+                    .shift
+                    .unwrap_or_else(|| choose_shift(&p.a, &p.b, &p.ta, &p.tb, rule));
+                let pair = SidePair::new(&p, k, &options);
+                let a_leads = pair.a_leads();
+                // The follower as it is built beside a lead not yet done.
+                let lead_done = inf();
+                let follower = pair.build(
+                    !a_leads,
+                    Limit {
+                        fixed: f64::INFINITY,
+                        rival: Some(&lead_done),
+                        reach: None,
+                    },
+                );
+                let Some(reach) = finished_at(&follower, true) else {
+                    continue;
+                };
+                let alone = pair.build(a_leads, Limit::fixed(f64::INFINITY)).0;
+                let follow_reach = AtomicU64::new(reach.to_bits());
+                let raced = pair
+                    .build(
+                        a_leads,
+                        Limit {
+                            fixed: f64::INFINITY,
+                            rival: None,
+                            reach: Some(&follow_reach),
+                        },
+                    )
+                    .0;
+                let label = format!("n = {n}, {rule:?}, shift {k}");
+                match (&raced, &alone) {
+                    (Ok(None), Ok(Some(st))) => {
+                        given_up += 1;
+                        assert!(
+                            st.mean_travel() > reach,
+                            "{label}: given up past reach {reach}, but alone it travels {}",
+                            st.mean_travel()
+                        );
+                    }
+                    (Ok(None), _) => given_up += 1,
+                    (Ok(Some(r)), Ok(Some(st))) => {
+                        kept += 1;
+                        assert_eq!(
+                            r.mean_travel().to_bits(),
+                            st.mean_travel().to_bits(),
+                            "{label}"
+                        );
+                        assert_eq!(r.legs.len(), st.legs.len(), "{label}");
+                        for (x, y) in r.legs.iter().zip(&st.legs) {
+                            assert_eq!(x.keys.len(), y.keys.len(), "{label}");
+                            for (p, q) in x.keys.iter().zip(&y.keys) {
+                                assert!(
+                                    p.iter()
+                                        .zip(q.iter())
+                                        .all(|(u, v)| u.x.to_bits() == v.x.to_bits()
+                                            && u.y.to_bits() == v.y.to_bits()),
+                                    "{label}: a key differs"
+                                );
+                            }
+                        }
+                    }
+                    _ => panic!(
+                        "{label}: raced {:?}, alone {:?}",
+                        raced.is_ok(),
+                        alone.is_ok()
+                    ),
+                }
+            }
+        }
+        // Both outcomes are exercised.
+        assert!(given_up > 0 && kept > 0, "given up {given_up}, kept {kept}");
+    }
 }

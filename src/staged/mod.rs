@@ -1024,12 +1024,33 @@ pub(crate) struct Limit<'a> {
     /// The leading side's travel once it finished (f64 bits; infinite
     /// before).
     pub(crate) rival: Option<&'a std::sync::atomic::AtomicU64>,
+    /// For the leading side, the following side's reach once it finished
+    /// (f64 bits; infinite before): the largest travel at which it went
+    /// on, at least its travel. The lead is given up at the start of a leg
+    /// or between samples once the travel it must at least end with (its
+    /// legs so far and the straight way from the leg's start to the other
+    /// curve) passes it: it would lose, and the follower decided
+    /// everything as it would have under the lead's finished travel. Not
+    /// a limit of [`Peak`]: what it gives up, building the lead alone
+    /// gives up too, or loses.
+    pub(crate) reach: Option<&'a std::sync::atomic::AtomicU64>,
 }
 
 impl Limit<'_> {
     /// The limit `fixed` alone (infinite: none).
     pub(crate) fn fixed(fixed: f64) -> Limit<'static> {
-        Limit { fixed, rival: None }
+        Limit {
+            fixed,
+            rival: None,
+            reach: None,
+        }
+    }
+
+    /// Whether a side that must travel at least `least` in all is past
+    /// the other side's reach ([`Limit::reach`]).
+    fn past_reach(&self, least: f64) -> bool {
+        self.reach
+            .is_some_and(|r| least > f64::from_bits(r.load(std::sync::atomic::Ordering::Relaxed)))
     }
 
     /// Whether the limit can be finite: a fixed bound, or a rival.
@@ -1321,6 +1342,12 @@ fn walk(
 ) -> Result<Walk, MorphError> {
     let mut why = String::new();
     let travelled = st.mean_travel();
+    // What the side must travel at least, whatever way it goes on.
+    let least = if inp.limit.reach.is_some() {
+        travelled + moves(x, inp.other).1 * AHEAD_COUNTED
+    } else {
+        0.0
+    };
     for (attempt, path) in recovery_paths(inp.leg_path).into_iter().enumerate() {
         let plan = match inp.plan(x, end, tree) {
             // Toward a target-shaped intermediate, head for the other curve
@@ -1337,6 +1364,9 @@ fn walk(
         let mut repairs = 0;
         let mut k = 1usize;
         let outcome = loop {
+            if inp.limit.past_reach(least) {
+                return Ok(Walk::GaveUp);
+            }
             let s = (k as f64 * LEG_STEP).min(1.0);
             let (p, r) = leg.plan.positions_counted(s, path);
             repairs += r;
@@ -1404,11 +1434,18 @@ fn last_leg(
     st: &mut Staged,
     peak: &mut Peak,
 ) -> Result<Option<Leg>, MorphError> {
+    // The travel before this leg, against the side's limit.
+    let base = st.mean_travel();
+    if inp.limit.reach.is_some()
+        && inp
+            .limit
+            .past_reach(base + moves(x, inp.other).1 * AHEAD_COUNTED)
+    {
+        return Ok(None);
+    }
     let tree = DualTree::new(x.len(), tris).map_err(CompatibleError::from)?;
     let plan = inp.plan(x, inp.other, &tree)?;
     let mut why = String::new();
-    // The travel before this leg, against the side's limit.
-    let base = st.mean_travel();
     // The straight path competes with the hybrid and the polar ones on the
     // last leg: a winding or unwinding that straight lines cut across is
     // often shorter along them. The one whose vertices travel least is

@@ -31,7 +31,6 @@
 //! blank.
 
 use immerse::Point;
-use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -43,17 +42,6 @@ use testkit::shapes;
 /// one turn, so it overlaps itself.
 fn spiral(n: usize, turns: f64) -> Vec<Point> {
     shapes::spiral_strip(n / 2, turns, 0.3).0
-}
-
-/// A star-shaped blob of n vertices.
-fn blob(n: usize) -> Vec<Point> {
-    (0..n)
-        .map(|i| {
-            let f = TAU * i as f64 / n as f64;
-            let r = 1.2 * (1.0 + 0.2 * (3.0 * f + 0.4).cos() + 0.1 * (5.0 * f + 1.3).cos());
-            Point::from_angle(f) * r
-        })
-        .collect()
 }
 
 fn triangle() -> Vec<Point> {
@@ -227,7 +215,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let dir = tempfile::tempdir()?;
     let pairs: [(&str, &str, Pair); 2] = [
         ("spiral ↔ blob", "spiral-blob", |n| {
-            (spiral(n, 2.0), blob(n))
+            (spiral(n, 2.0), shapes::star_blob(n))
         }),
         ("triangle → spiral strip", "triangle-spiral", |n| {
             (triangle(), spiral(n, 2.0))

@@ -1031,19 +1031,13 @@ pub(crate) fn plan(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::propagate::compatible::same_bits;
 
     /// The benchmark's spiral ↔ blob pair: a spiral strip of `n` vertices
     /// wound `turns` times (it overlaps itself) and a star-shaped blob.
     fn spiral_blob(n: usize, turns: f64) -> (Vec<Point>, Vec<Point>) {
         let spiral = testkit::shapes::spiral_strip(n / 2, turns, 0.3).0;
-        let blob = (0..n)
-            .map(|i| {
-                let f = std::f64::consts::TAU * i as f64 / n as f64;
-                let r = 1.2 * (1.0 + 0.2 * (3.0 * f + 0.4).cos() + 0.1 * (5.0 * f + 1.3).cos());
-                Point::from_angle(f) * r
-            })
-            .collect();
-        (spiral, blob)
+        (spiral, testkit::shapes::star_blob(n))
     }
 
     /// The lead is given up by the follower's reach R only where building
@@ -1114,13 +1108,7 @@ mod tests {
                         for (x, y) in r.legs.iter().zip(&st.legs) {
                             assert_eq!(x.keys.len(), y.keys.len(), "{label}");
                             for (p, q) in x.keys.iter().zip(&y.keys) {
-                                assert!(
-                                    p.iter()
-                                        .zip(q.iter())
-                                        .all(|(u, v)| u.x.to_bits() == v.x.to_bits()
-                                            && u.y.to_bits() == v.y.to_bits()),
-                                    "{label}: a key differs"
-                                );
+                                assert!(same_bits(p, q), "{label}: a key differs");
                             }
                         }
                     }

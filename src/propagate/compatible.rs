@@ -108,7 +108,7 @@ pub(crate) struct PlanSeed {
 }
 
 /// Whether `a` and `b` are the same points bit for bit.
-fn same_bits(a: &[Point], b: &[Point]) -> bool {
+pub(crate) fn same_bits(a: &[Point], b: &[Point]) -> bool {
     a.len() == b.len()
         && a.iter()
             .zip(b)

@@ -1046,11 +1046,23 @@ impl Limit<'_> {
         }
     }
 
-    /// Whether a side that must travel at least `least` in all is past
-    /// the other side's reach ([`Limit::reach`]).
-    fn past_reach(&self, least: f64) -> bool {
+    /// What a side at `x` that has travelled `travelled` must travel at
+    /// least in all, whatever way it goes on to `other` (where every way
+    /// ends): `None` where no reach is consulted ([`Limit::reach`]).
+    fn least_travel(&self, travelled: f64, x: &[Point], other: &[Point]) -> Option<f64> {
         self.reach
-            .is_some_and(|r| least > f64::from_bits(r.load(std::sync::atomic::Ordering::Relaxed)))
+            .map(|_| travelled + moves(x, other).1 * AHEAD_COUNTED)
+    }
+
+    /// Whether a side that must travel at least `least` in all
+    /// ([`Limit::least_travel`]) is past the other side's reach.
+    fn past_reach(&self, least: Option<f64>) -> bool {
+        match (self.reach, least) {
+            (Some(r), Some(least)) => {
+                least > f64::from_bits(r.load(std::sync::atomic::Ordering::Relaxed))
+            }
+            _ => false,
+        }
     }
 
     /// Whether the limit can be finite: a fixed bound, or a rival.
@@ -1342,12 +1354,7 @@ fn walk(
 ) -> Result<Walk, MorphError> {
     let mut why = String::new();
     let travelled = st.mean_travel();
-    // What the side must travel at least, whatever way it goes on.
-    let least = if inp.limit.reach.is_some() {
-        travelled + moves(x, inp.other).1 * AHEAD_COUNTED
-    } else {
-        0.0
-    };
+    let least = inp.limit.least_travel(travelled, x, inp.other);
     for (attempt, path) in recovery_paths(inp.leg_path).into_iter().enumerate() {
         let plan = match inp.plan(x, end, tree) {
             // Toward a target-shaped intermediate, head for the other curve
@@ -1436,10 +1443,9 @@ fn last_leg(
 ) -> Result<Option<Leg>, MorphError> {
     // The travel before this leg, against the side's limit.
     let base = st.mean_travel();
-    if inp.limit.reach.is_some()
-        && inp
-            .limit
-            .past_reach(base + moves(x, inp.other).1 * AHEAD_COUNTED)
+    if inp
+        .limit
+        .past_reach(inp.limit.least_travel(base, x, inp.other))
     {
         return Ok(None);
     }

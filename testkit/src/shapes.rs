@@ -13,6 +13,18 @@ pub fn bounds(points: &[Point]) -> (Point, Point) {
     )
 }
 
+/// A star-shaped blob of `n` vertices about the origin, radius 1.2 ± 30 %
+/// (the benchmarks' blob, counter-clockwise).
+pub fn star_blob(n: usize) -> Vec<Point> {
+    (0..n)
+        .map(|i| {
+            let f = TAU * i as f64 / n as f64;
+            let r = 1.2 * (1.0 + 0.2 * (3.0 * f + 0.4).cos() + 0.1 * (5.0 * f + 1.3).cos());
+            Point::from_angle(f) * r
+        })
+        .collect()
+}
+
 /// A spiral strip of `m` stations curling `turns` times with the given
 /// width (outer edge out, inner edge back, n = 2m vertices) and its zigzag
 /// triangulation: an immersed disk for any number of turns; it overlaps

@@ -1635,12 +1635,22 @@ pub(crate) mod tests {
         Compatible::new(a, b, tris, RootChoice::Disk, DEFAULT_FAN_MARGIN).expect("a valid pair")
     }
 
+    /// `count` random compatible pairs of 6 to 35 vertices ([`random_pair`]).
+    fn disk_pairs(
+        rng: &mut Rng,
+        count: usize,
+    ) -> impl Iterator<Item = (Vec<[u32; 3]>, Vec<Point>, Vec<Point>)> + '_ {
+        (0..count).map(move |_| {
+            let (_, tris, a, b) = random_pair(rng, 6, 30.0);
+            (tris, a, b)
+        })
+    }
+
     #[test]
     fn a_plan_built_again_from_its_seed_is_the_same_bit_for_bit() {
         let mut rng = Rng(0x9e1ea5e);
         let mut used = 0;
-        for round in 0..20 {
-            let (_, tris, a, b) = random_pair(&mut rng, 6, 30.0);
+        for (round, (tris, a, b)) in disk_pairs(&mut rng, 20).enumerate() {
             let mut plan = disk_plan(&a, &b, &tris);
             // What the staged route changes after building: a guide's end
             // (every other pair) and an area range that binds.
@@ -1728,8 +1738,7 @@ pub(crate) mod tests {
     #[test]
     fn consecutive_frames_move_continuously() {
         let mut rng = Rng(0x1234567);
-        for _ in 0..20 {
-            let (_, tris, a, b) = random_pair(&mut rng, 6, 30.0);
+        for (tris, a, b) in disk_pairs(&mut rng, 20) {
             let plan = disk_plan(&a, &b, &tris);
             let diag = bbox_diag(&a).max(bbox_diag(&b));
             // Halving the step roughly halves the largest move: no jumps.
@@ -1812,8 +1821,7 @@ pub(crate) mod tests {
     fn angle_paths_are_placed_by_the_least_squares_fit_to_the_straight_guide() {
         let mut rng = Rng(0x6a09e667f3bcc908);
         let mut unclamped = 0;
-        for case in 0..30 {
-            let (_, tris, a, b) = random_pair(&mut rng, 6, 30.0);
+        for (case, (tris, a, b)) in disk_pairs(&mut rng, 30).enumerate() {
             let b: Vec<Point> = b
                 .iter()
                 .map(|p| Point::from_angle(2.0).rotate(*p) * 1.7 + Point::new(3.0, -1.0))

@@ -37,6 +37,7 @@ pub use plan::{
 pub(crate) use tween::strictly_increasing;
 pub use tween::{Keyframe, Tween, timed_keyframes};
 
+use crate::immersion::CheckedTriangles;
 use crate::tree::RootChoice;
 
 /// Options of a morph.
@@ -90,22 +91,30 @@ impl Compatible {
     /// [`MorphError::InvalidFrame`] (a bug) when a guaranteed path produced
     /// an invalid frame.
     pub fn morph(&self, times: &[f64], path: ThirdVertexPath) -> Result<Morph, MorphError> {
+        use rayon::prelude::*;
         let plan = self;
+        let tris = plan.triangles();
+        // Every frame shares the plan's triangulation: its combinatorics
+        // are checked once, and each frame's triangles as it is computed,
+        // the frames on every core.
+        let checked = CheckedTriangles::new(plan.source().len(), tris);
         let build = |path: ThirdVertexPath| -> Result<Vec<Frame>, (f64, String)> {
-            let frames: Vec<Frame> = times
-                .iter()
-                .map(|&t| Frame {
-                    t,
-                    points: plan.positions(t, path),
-                    triangles: plan.triangles().to_vec(),
+            let frames: Vec<Result<Frame, (f64, String)>> = times
+                .par_iter()
+                .map(|&t| {
+                    let points = plan.positions(t, path);
+                    checked
+                        .check(&points)
+                        .map_err(|defect| (t, defect.to_string()))?;
+                    Ok(Frame {
+                        t,
+                        points,
+                        triangles: tris.to_vec(),
+                    })
                 })
                 .collect();
-            for f in &frames {
-                if let Err(defect) = f.check() {
-                    return Err((f.t, defect.to_string()));
-                }
-            }
-            Ok(frames)
+            // The first failure in time order, as when checked one by one.
+            frames.into_iter().collect()
         };
         let mut fallbacks = Vec::new();
         let mut last = (0.0, String::new());

@@ -71,7 +71,8 @@ impl Quality {
     /// Bytes of the DP tables that [`triangulate_with`] keeps for `n`
     /// points at this quality: the decision DP's (n²/2 bytes) for
     /// [`Quality::Any`] and [`Quality::Delaunay`], and the max–min DP's
-    /// (about 36n² bytes more) for [`Quality::MaxMin`].
+    /// (about 18n² bytes more: the halves of its tables it touches) for
+    /// [`Quality::MaxMin`].
     pub fn table_bytes(self, n: usize) -> usize {
         match self {
             Quality::Any | Quality::Delaunay => crate::immersion::dp_memory_bytes(n),
@@ -105,7 +106,7 @@ impl FromStr for Quality {
 /// The valid triangulation that maximises the minimum angle; among exact
 /// ties, the one with the largest sum over triangles of sin² of the
 /// triangle's minimum angle, then the smallest apex index (see the
-/// `optimal` module docs). O(n³) time, 36n² bytes of tables.
+/// `optimal` module docs). O(n³) time, about 18n² bytes of tables.
 ///
 /// # Errors
 ///
@@ -189,8 +190,8 @@ pub fn triangulate_with_progress(
     }
 }
 
-/// Most points the max–min-angle DP accepts: it keeps about 36n² bytes
-/// of tables (576 MB at this limit).
+/// Most points the max–min-angle DP accepts: it keeps about 18n² bytes
+/// of tables (288 MB at this limit).
 pub(crate) const MAX_MAXMIN_POINTS: usize = 4_000;
 
 /// Most candidate triangles `(i, k, j)` (apexes of feasible sub-polygons,

@@ -28,8 +28,10 @@
 //! operations) and a curve with more than the caller's limit is refused
 //! before the DP runs. Memory: four `n × n` `f64`
 //! tables (row-major and transposed copies of the two objective values) and
-//! one `n × n` `u32` table of apexes, 36n² bytes (36 MB at n = 1000, 576 MB
-//! at n = 4000), plus the decision table.
+//! one `n × n` `u32` table of apexes, 36n² bytes allocated, of which the DP
+//! touches the half each table uses (cells i < j, or their transposes),
+//! about 18n² bytes (18 MB at n = 1000, 288 MB at n = 4000), plus the
+//! decision table.
 
 use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
 
@@ -44,17 +46,21 @@ use crate::geom::polygon::sin2_min_angle;
 
 const NONE: u32 = u32::MAX;
 
-/// Working memory of [`maxmin`] for `n` points, in bytes.
+/// Working memory of [`maxmin`] for `n` points, in bytes: the halves of
+/// its tables it touches (module docs) and the decision table.
 pub(crate) fn memory_bytes(n: usize) -> usize {
-    36 * n * n + crate::immersion::dp_memory_bytes(n)
+    18 * n * n + crate::immersion::dp_memory_bytes(n)
 }
 
 /// A table of `f64` that the parallel fill writes cell by cell.
 struct Floats(Vec<AtomicU64>);
 
 impl Floats {
-    fn new(len: usize, x: f64) -> Self {
-        Self((0..len).map(|_| AtomicU64::new(x.to_bits())).collect())
+    /// `len` cells of 0.0, in memory the allocator hands out zeroed: a
+    /// page none of whose cells is set is never touched, so the half of a
+    /// square table that the DP does not use costs no memory.
+    fn zeroed(len: usize) -> Self {
+        Self(bytemuck::zeroed_vec(len))
     }
 
     #[inline]
@@ -128,17 +134,24 @@ pub(crate) fn maxmin(
         progress(1.0);
         return Err(NotSelfOverlapping::TooManyCandidates { candidates, limit });
     }
-    // Row-major (value, sum) pairs at 2 (i n + j), and the transposed
-    // copy at 2 (j n + i), so both operands of a cell are read in order.
-    let fresh = |len: usize| {
-        let t = Floats::new(2 * len, 0.0);
-        for at in 0..len {
-            t.set(2 * at, f64::NEG_INFINITY);
+    // Row-major (value, sum) pairs at 2 (i n + j) for i < j, and the
+    // transposed copy at 2 (j n + i), so both operands of a cell are read
+    // in order. The DP reads and writes only these halves (an apex k of
+    // the chord (i, j) has i < k < j): their values start at −∞, and the
+    // other halves are never touched.
+    let (rows, cols) = (Floats::zeroed(2 * n * n), Floats::zeroed(2 * n * n));
+    (0..n).into_par_iter().for_each(|i| {
+        for j in i + 1..n {
+            rows.set(2 * (i * n + j), f64::NEG_INFINITY);
         }
-        t
-    };
-    let (rows, cols) = (fresh(n * n), fresh(n * n));
-    let arg: Vec<AtomicU32> = (0..n * n).map(|_| AtomicU32::new(NONE)).collect();
+    });
+    (0..n).into_par_iter().for_each(|j| {
+        for i in 0..j {
+            cols.set(2 * (j * n + i), f64::NEG_INFINITY);
+        }
+    });
+    // The apex of (i, j) plus one at i n + j; 0 where there is none.
+    let arg: Vec<AtomicU32> = bytemuck::zeroed_vec(n * n);
     for i in 0..n - 1 {
         rows.set(2 * (i * n + i + 1), f64::INFINITY);
         cols.set(2 * ((i + 1) * n + i), f64::INFINITY);
@@ -174,12 +187,12 @@ pub(crate) fn maxmin(
         rows.set(ri + 2 * j + 1, best_s);
         cols.set(cj + 2 * i, best_v);
         cols.set(cj + 2 * i + 1, best_s);
-        arg[i * n + j].store(best_k, Relaxed);
+        arg[i * n + j].store(if best_k == NONE { 0 } else { best_k + 1 }, Relaxed);
     });
     let mut out = from_apexes(n, |i, j| {
         let k = arg[i * n + j].load(Relaxed);
-        debug_assert_ne!(k, NONE, "max-min DP backtrack hit an empty cell: a bug");
-        (k != NONE).then_some(k as usize)
+        debug_assert_ne!(k, 0, "max-min DP backtrack hit an empty cell: a bug");
+        (k != 0).then(|| k as usize - 1)
     })
     .ok_or(NotSelfOverlapping::NoValidTriangulation)?;
     out.sort_unstable();

@@ -140,14 +140,13 @@ pub(crate) fn maxmin(
     // the chord (i, j) has i < k < j): their values start at −∞, and the
     // other halves are never touched.
     let (rows, cols) = (Floats::zeroed(2 * n * n), Floats::zeroed(2 * n * n));
-    (0..n).into_par_iter().for_each(|i| {
-        for j in i + 1..n {
-            rows.set(2 * (i * n + j), f64::NEG_INFINITY);
+    (0..n).into_par_iter().for_each(|r| {
+        // Row r: its cells after the diagonal in `rows`, before it in `cols`.
+        for c in r + 1..n {
+            rows.set(2 * (r * n + c), f64::NEG_INFINITY);
         }
-    });
-    (0..n).into_par_iter().for_each(|j| {
-        for i in 0..j {
-            cols.set(2 * (j * n + i), f64::NEG_INFINITY);
+        for c in 0..r {
+            cols.set(2 * (r * n + c), f64::NEG_INFINITY);
         }
     });
     // The apex of (i, j) plus one at i n + j; 0 where there is none.

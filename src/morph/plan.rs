@@ -1123,4 +1123,72 @@ mod tests {
         // Both outcomes are exercised.
         assert!(given_up > 0 && kept > 0, "given up {given_up}, kept {kept}");
     }
+
+    /// The follower's reach is a limit under which it is built the same
+    /// (docs/design.md §7, the race of a plan's two sides): built under
+    /// any limit from its reach up, it keeps the same plan bit for bit as
+    /// it did beside a lead not yet done. Limits between the reach and the
+    /// largest travel at which it consulted its limit are tried, so that
+    /// what its peak leaves out of the reach (the first path of a last leg
+    /// that the second beat, `staged::Excuse`) is put to the test.
+    #[test]
+    fn the_follower_is_built_the_same_under_any_limit_from_its_reach() {
+        let options = CurveMorphOptions::DEFAULT;
+        let (mut checked, mut above) = (0, 0);
+        for (n, turns) in [(160, 1.5), (240, 2.0), (320, 2.0), (400, 2.0)] {
+            let (a, b) = spiral_blob(n, turns);
+            let tri = Triangulations::new(&a, &b, options.quality);
+            for rule in [Correspondence::Outline, Correspondence::MinFlips] {
+                let p = prepare(&tri, options.counts, rule).expect("the pair prepares");
+                let k = p
+                    .shift
+                    .unwrap_or_else(|| choose_shift(&p.a, &p.b, &p.ta, &p.tb, rule));
+                let pair = SidePair::new(&p, k, &options);
+                for from_a in [true, false] {
+                    let lead_not_done = AtomicU64::new(f64::INFINITY.to_bits());
+                    let follower = pair.build(
+                        from_a,
+                        Limit {
+                            fixed: f64::INFINITY,
+                            rival: Some(&lead_not_done),
+                            reach: None,
+                        },
+                    );
+                    let Some(reach) = finished_at(&follower, true) else {
+                        continue;
+                    };
+                    let (Ok(Some(kept)), peak) = &follower else {
+                        unreachable!("a side with a reach finished");
+                    };
+                    let mut limits = vec![reach];
+                    if peak.consulted > reach {
+                        above += 1;
+                        limits.push(0.5 * (reach + peak.consulted));
+                    }
+                    for limit in limits {
+                        let label = format!("n = {n}, {rule:?}, from a: {from_a}, limit {limit}");
+                        let (Ok(Some(again)), _) = pair.build(from_a, Limit::fixed(limit)) else {
+                            panic!("{label}: not kept under its reach {reach}");
+                        };
+                        checked += 1;
+                        assert_eq!(
+                            again.mean_travel().to_bits(),
+                            kept.mean_travel().to_bits(),
+                            "{label}"
+                        );
+                        assert_eq!(again.legs.len(), kept.legs.len(), "{label}");
+                        for (x, y) in again.legs.iter().zip(&kept.legs) {
+                            assert_eq!(x.path, y.path, "{label}");
+                            assert_eq!(x.keys.len(), y.keys.len(), "{label}");
+                            for (p, q) in x.keys.iter().zip(&y.keys) {
+                                assert!(same_bits(p, q), "{label}: a key differs");
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        // Some followers consulted their limit above their reach.
+        assert!(checked > 0 && above > 0, "checked {checked}, above {above}");
+    }
 }

@@ -1109,6 +1109,12 @@ impl Peak {
         }
         passes
     }
+
+    /// Counts what `other` saw on the last leg as seen by this side.
+    fn count(&mut self, other: &Peak) {
+        self.consulted = self.consulted.max(other.consulted);
+        self.went_on_last = self.went_on_last.max(other.went_on_last);
+    }
 }
 
 impl SideInput<'_> {
@@ -1479,7 +1485,11 @@ fn last_leg(
     let mut passed: Option<ThirdVertexPath> = None;
     // Why the requested path failed the exact check, if it did.
     let mut first_failed: Option<String> = None;
-    for path in candidates.drain(..) {
+    // What the first path saw of the limit, kept apart from `peak` until
+    // it is known whether it counts (`Excuse`).
+    let mut first_peak = Peak::default();
+    let mut excuse = Excuse::default();
+    for (i, path) in candidates.drain(..).enumerate() {
         let rival = best.as_ref().map(|(b, _)| b);
         // The polar path is for windings that straight lines cut across;
         // where the straight leg beat its rival (hybrid, or rigid) there is
@@ -1496,11 +1506,25 @@ fn last_leg(
         // it can still win only if it keeps overlaps the kept leg undoes,
         // and then the side travels past the limit anyway. So the limit
         // holds unless the kept leg unwinds.
+        let seen = if i == 0 { &mut first_peak } else { &mut *peak };
         let lim = match rival {
             Some(r) if !r.keeps_overlaps() => None,
-            _ => Some((&inp.limit, base, &mut *peak)),
+            _ => Some((&inp.limit, seen)),
         };
-        match sample_leg(plan.clone(), path, x, tris, inp.max_step, rival, lim) {
+        let sampled = sample_leg(
+            plan.clone(),
+            path,
+            x,
+            tris,
+            inp.max_step,
+            rival,
+            (base, lim),
+        );
+        if i == 0 {
+            excuse.first_finished = matches!(sampled, Ok(Sampled::Done(..)));
+            excuse.first_had_rivals = more;
+        }
+        match sampled {
             Ok(Sampled::CannotBeat) => {
                 if !more {
                     break;
@@ -1521,26 +1545,40 @@ fn last_leg(
                     // on travel they jump on thin strips (the `angle`
                     // path: 7 jumps in 2,000 stress pairs of seed
                     // 0xbee5, against none).
+                    peak.count(&first_peak);
                     return Ok(None);
                 }
                 passed = Some(path);
             }
-            Ok(Sampled::Done(leg, repairs)) => {
+            Ok(Sampled::Done(leg, repairs, most)) => {
                 let leg = *leg;
                 if let Some(first) = passed.take() {
                     // The first path passed the limit, this one did not:
                     // this one wins unless it unwinds overlaps the first
                     // keeps, which only the whole first path can tell.
                     if !leg.keeps_overlaps()
-                        && let Ok(Sampled::Done(f, _)) =
-                            sample_leg(plan.clone(), first, x, tris, inp.max_step, None, None)
+                        && let Ok(Sampled::Done(f, ..)) = sample_leg(
+                            plan.clone(),
+                            first,
+                            x,
+                            tris,
+                            inp.max_step,
+                            None,
+                            (base, None),
+                        )
                         && f.beats(&leg)
                     {
+                        peak.count(&first_peak);
                         return Ok(None);
                     }
                     best = Some((leg, repairs));
+                    excuse.best = i;
                 } else if best.as_ref().is_none_or(|(b, _)| leg.beats(b)) {
                     best = Some((leg, repairs));
+                    excuse.best = i;
+                }
+                if i == 1 {
+                    excuse.second_most = most;
                 }
                 if !more {
                     break;
@@ -1553,6 +1591,12 @@ fn last_leg(
                 why = w;
             }
         }
+    }
+    if excuse.holds() {
+        peak.consulted = peak.consulted.max(first_peak.consulted);
+        peak.went_on_last = peak.went_on_last.max(excuse.second_most);
+    } else {
+        peak.count(&first_peak);
     }
     if let (Some(w), Some((leg, _))) = (&first_failed, &best) {
         st.fallbacks.push(Fallback::new(
@@ -1591,10 +1635,46 @@ pub(crate) fn guide_fallback(
     })
 }
 
+/// Where the first path of a last leg did not count toward the side's
+/// [`Peak`] (what decides whether the follower is built again under the
+/// lead's travel, and the follower's reach that can give the lead up):
+/// the first path (no rival, so the limit alone could stop it) finished,
+/// the second path then beat it and stayed kept to the end. Under any
+/// limit `L` at least the side's recorded peak, the last leg then keeps
+/// the same leg: the first path either stays under `L` (everything as
+/// here) or passes it and is set aside; the second path, sampled then
+/// without a rival, gives the same samples (it finished here, so its
+/// rival never stopped it), stays under `L` (its largest partial travel,
+/// `second_most`, is counted in the peak) and is kept, since the first
+/// does not beat it (it lost to it here, and [`Leg::beats`] is
+/// asymmetric); every path after it sees the same rival as here.
+#[derive(Default)]
+struct Excuse {
+    /// The first path finished (it neither failed nor passed the limit).
+    first_finished: bool,
+    /// Rivals follow the first path (a passed first path is set aside,
+    /// not the end of the side).
+    first_had_rivals: bool,
+    /// The index of the path kept last.
+    best: usize,
+    /// The second path's largest partial travel, as the limit would see
+    /// it (the travel before the leg, its own, and the straight way
+    /// ahead).
+    second_most: f64,
+}
+
+impl Excuse {
+    fn holds(&self) -> bool {
+        self.first_finished && self.first_had_rivals && self.best == 1
+    }
+}
+
 /// How sampling a leg ended.
 enum Sampled {
-    /// Every sample passed the exact check: the leg and its repairs.
-    Done(Box<Leg>, usize),
+    /// Every sample passed the exact check: the leg, its repairs and its
+    /// largest partial travel as the limit would see it (see
+    /// [`sample_leg`]), whether or not the limit was consulted.
+    Done(Box<Leg>, usize, f64),
     /// It can no longer beat the rival.
     CannotBeat,
     /// Its vertices travelled farther than the limit.
@@ -1606,7 +1686,9 @@ enum Sampled {
 /// grows, by at least the mean straight distance from each vertex to its
 /// end, and its least turning only falls) or, with `limit` = (the side's
 /// limit, the travel before this leg, the side's peak), the side's mean
-/// vertex travel must pass the limit (by the same bound).
+/// vertex travel must pass the limit (by the same bound). `watch` is the
+/// travel before this leg and, where the side's limit holds here, the
+/// limit and the peak that records what the leg saw of it.
 fn sample_leg(
     plan: Compatible,
     path: ThirdVertexPath,
@@ -1614,8 +1696,10 @@ fn sample_leg(
     tris: &[[u32; 3]],
     max_step: f64,
     rival: Option<&Leg>,
-    mut limit: Option<(&Limit<'_>, f64, &mut Peak)>,
+    watch: (f64, Option<(&Limit<'_>, &mut Peak)>),
 ) -> Result<Sampled, String> {
+    let (base, mut limit) = watch;
+    let mut most = f64::NEG_INFINITY;
     let steps = (1.0 / LEG_STEP).round() as usize;
     let mut leg = Leg::start(plan, path);
     let mut prev = Shape::clone(&leg.keys[0]);
@@ -1639,13 +1723,15 @@ fn sample_leg(
         if rival.is_some_and(|b| leg.cannot_beat(b, ahead)) {
             return Ok(Sampled::CannotBeat);
         }
-        if let Some((lim, base, peak)) = limit.as_mut()
-            && peak.passes(*base + leg.mean_travel + ahead, lim, true)
+        let partial = base + leg.mean_travel + ahead;
+        most = most.max(partial);
+        if let Some((lim, peak)) = limit.as_mut()
+            && peak.passes(partial, lim, true)
         {
             return Ok(Sampled::PassedLimit);
         }
     }
-    Ok(Sampled::Done(Box::new(leg), repairs))
+    Ok(Sampled::Done(Box::new(leg), repairs, most))
 }
 
 /// The share of the straight way still to go that a side on a leg toward

@@ -1040,6 +1040,57 @@ mod tests {
         (spiral, testkit::shapes::star_blob(n))
     }
 
+    /// Calls `f` with a label and the two sides of each rule's plan of
+    /// the spiral ↔ blob pair at each (vertices, turns) of `sizes`.
+    fn for_each_side_pair(sizes: &[(usize, f64)], mut f: impl FnMut(&str, &SidePair<'_>)) {
+        let options = CurveMorphOptions::DEFAULT;
+        for &(n, turns) in sizes {
+            let (a, b) = spiral_blob(n, turns);
+            let tri = Triangulations::new(&a, &b, options.quality);
+            for rule in [Correspondence::Outline, Correspondence::MinFlips] {
+                let p = prepare(&tri, options.counts, rule).expect("the pair prepares");
+                let k = p
+                    .shift
+                    .unwrap_or_else(|| choose_shift(&p.a, &p.b, &p.ta, &p.tb, rule));
+                f(
+                    &format!("n = {n}, {rule:?}, shift {k}"),
+                    &SidePair::new(&p, k, &options),
+                );
+            }
+        }
+    }
+
+    /// Asserts that two built sides are the same plan bit for bit: travel,
+    /// legs, paths and keys.
+    fn assert_same_plan(x: &Staged, y: &Staged, label: &str) {
+        assert_eq!(
+            x.mean_travel().to_bits(),
+            y.mean_travel().to_bits(),
+            "{label}"
+        );
+        assert_eq!(x.legs.len(), y.legs.len(), "{label}");
+        for (l, m) in x.legs.iter().zip(&y.legs) {
+            assert_eq!(l.path, m.path, "{label}");
+            assert_eq!(l.keys.len(), m.keys.len(), "{label}");
+            for (p, q) in l.keys.iter().zip(&m.keys) {
+                assert!(same_bits(p, q), "{label}: a key differs");
+            }
+        }
+    }
+
+    /// The follower as it is built beside a lead not yet done.
+    fn follower_beside_a_running_lead(pair: &SidePair<'_>, from_a: bool) -> (SideResult, Peak) {
+        let lead_not_done = AtomicU64::new(f64::INFINITY.to_bits());
+        pair.build(
+            from_a,
+            Limit {
+                fixed: f64::INFINITY,
+                rival: Some(&lead_not_done),
+                reach: None,
+            },
+        )
+    }
+
     /// The lead is given up by the follower's reach R only where building
     /// it alone keeps the same (docs/design.md §7, the race of a plan's
     /// two sides): alone it then travels farther than R, or is given up
@@ -1048,78 +1099,46 @@ mod tests {
     /// of the follower built first, as when it finishes before the lead.
     #[test]
     fn the_lead_is_given_up_by_the_followers_reach_only_where_it_would_lose() {
-        let options = CurveMorphOptions::DEFAULT;
-        let inf = || AtomicU64::new(f64::INFINITY.to_bits());
         let (mut given_up, mut kept) = (0, 0);
-        for (n, turns) in [(160, 1.5), (240, 2.0), (320, 2.0)] {
-            let (a, b) = spiral_blob(n, turns);
-            let tri = Triangulations::new(&a, &b, options.quality);
-            for rule in [Correspondence::Outline, Correspondence::MinFlips] {
-                let p = prepare(&tri, options.counts, rule).expect("the pair prepares");
-                let k = p
-                    .shift
-                    .unwrap_or_else(|| choose_shift(&p.a, &p.b, &p.ta, &p.tb, rule));
-                let pair = SidePair::new(&p, k, &options);
-                let a_leads = pair.a_leads();
-                // The follower as it is built beside a lead not yet done.
-                let lead_done = inf();
-                let follower = pair.build(
-                    !a_leads,
+        for_each_side_pair(&[(160, 1.5), (240, 2.0), (320, 2.0)], |label, pair| {
+            let a_leads = pair.a_leads();
+            let follower = follower_beside_a_running_lead(pair, !a_leads);
+            let Some(reach) = finished_at(&follower, true) else {
+                return;
+            };
+            let alone = pair.build(a_leads, Limit::fixed(f64::INFINITY)).0;
+            let follow_reach = AtomicU64::new(reach.to_bits());
+            let raced = pair
+                .build(
+                    a_leads,
                     Limit {
                         fixed: f64::INFINITY,
-                        rival: Some(&lead_done),
-                        reach: None,
+                        rival: None,
+                        reach: Some(&follow_reach),
                     },
-                );
-                let Some(reach) = finished_at(&follower, true) else {
-                    continue;
-                };
-                let alone = pair.build(a_leads, Limit::fixed(f64::INFINITY)).0;
-                let follow_reach = AtomicU64::new(reach.to_bits());
-                let raced = pair
-                    .build(
-                        a_leads,
-                        Limit {
-                            fixed: f64::INFINITY,
-                            rival: None,
-                            reach: Some(&follow_reach),
-                        },
-                    )
-                    .0;
-                let label = format!("n = {n}, {rule:?}, shift {k}");
-                match (&raced, &alone) {
-                    (Ok(None), Ok(Some(st))) => {
-                        given_up += 1;
-                        assert!(
-                            st.mean_travel() > reach,
-                            "{label}: given up past reach {reach}, but alone it travels {}",
-                            st.mean_travel()
-                        );
-                    }
-                    (Ok(None), _) => given_up += 1,
-                    (Ok(Some(r)), Ok(Some(st))) => {
-                        kept += 1;
-                        assert_eq!(
-                            r.mean_travel().to_bits(),
-                            st.mean_travel().to_bits(),
-                            "{label}"
-                        );
-                        assert_eq!(r.legs.len(), st.legs.len(), "{label}");
-                        for (x, y) in r.legs.iter().zip(&st.legs) {
-                            assert_eq!(x.keys.len(), y.keys.len(), "{label}");
-                            for (p, q) in x.keys.iter().zip(&y.keys) {
-                                assert!(same_bits(p, q), "{label}: a key differs");
-                            }
-                        }
-                    }
-                    _ => panic!(
-                        "{label}: raced {:?}, alone {:?}",
-                        raced.is_ok(),
-                        alone.is_ok()
-                    ),
+                )
+                .0;
+            match (&raced, &alone) {
+                (Ok(None), Ok(Some(st))) => {
+                    given_up += 1;
+                    assert!(
+                        st.mean_travel() > reach,
+                        "{label}: given up past reach {reach}, but alone it travels {}",
+                        st.mean_travel()
+                    );
                 }
+                (Ok(None), _) => given_up += 1,
+                (Ok(Some(r)), Ok(Some(st))) => {
+                    kept += 1;
+                    assert_same_plan(r, st, label);
+                }
+                _ => panic!(
+                    "{label}: raced {:?}, alone {:?}",
+                    raced.is_ok(),
+                    alone.is_ok()
+                ),
             }
-        }
+        });
         // Both outcomes are exercised.
         assert!(given_up > 0 && kept > 0, "given up {given_up}, kept {kept}");
     }
@@ -1133,61 +1152,32 @@ mod tests {
     /// that the second beat, `staged::Excuse`) is put to the test.
     #[test]
     fn the_follower_is_built_the_same_under_any_limit_from_its_reach() {
-        let options = CurveMorphOptions::DEFAULT;
         let (mut checked, mut above) = (0, 0);
-        for (n, turns) in [(160, 1.5), (240, 2.0), (320, 2.0), (400, 2.0)] {
-            let (a, b) = spiral_blob(n, turns);
-            let tri = Triangulations::new(&a, &b, options.quality);
-            for rule in [Correspondence::Outline, Correspondence::MinFlips] {
-                let p = prepare(&tri, options.counts, rule).expect("the pair prepares");
-                let k = p
-                    .shift
-                    .unwrap_or_else(|| choose_shift(&p.a, &p.b, &p.ta, &p.tb, rule));
-                let pair = SidePair::new(&p, k, &options);
-                for from_a in [true, false] {
-                    let lead_not_done = AtomicU64::new(f64::INFINITY.to_bits());
-                    let follower = pair.build(
-                        from_a,
-                        Limit {
-                            fixed: f64::INFINITY,
-                            rival: Some(&lead_not_done),
-                            reach: None,
-                        },
-                    );
-                    let Some(reach) = finished_at(&follower, true) else {
-                        continue;
+        let sizes = [(160, 1.5), (240, 2.0), (320, 2.0), (400, 2.0)];
+        for_each_side_pair(&sizes, |label, pair| {
+            for from_a in [true, false] {
+                let follower = follower_beside_a_running_lead(pair, from_a);
+                let Some(reach) = finished_at(&follower, true) else {
+                    continue;
+                };
+                let (Ok(Some(kept)), peak) = &follower else {
+                    unreachable!("a side with a reach finished");
+                };
+                let mut limits = vec![reach];
+                if peak.consulted > reach {
+                    above += 1;
+                    limits.push(0.5 * (reach + peak.consulted));
+                }
+                for limit in limits {
+                    let label = format!("{label}, from a: {from_a}, limit {limit}");
+                    let (Ok(Some(again)), _) = pair.build(from_a, Limit::fixed(limit)) else {
+                        panic!("{label}: not kept under its reach {reach}");
                     };
-                    let (Ok(Some(kept)), peak) = &follower else {
-                        unreachable!("a side with a reach finished");
-                    };
-                    let mut limits = vec![reach];
-                    if peak.consulted > reach {
-                        above += 1;
-                        limits.push(0.5 * (reach + peak.consulted));
-                    }
-                    for limit in limits {
-                        let label = format!("n = {n}, {rule:?}, from a: {from_a}, limit {limit}");
-                        let (Ok(Some(again)), _) = pair.build(from_a, Limit::fixed(limit)) else {
-                            panic!("{label}: not kept under its reach {reach}");
-                        };
-                        checked += 1;
-                        assert_eq!(
-                            again.mean_travel().to_bits(),
-                            kept.mean_travel().to_bits(),
-                            "{label}"
-                        );
-                        assert_eq!(again.legs.len(), kept.legs.len(), "{label}");
-                        for (x, y) in again.legs.iter().zip(&kept.legs) {
-                            assert_eq!(x.path, y.path, "{label}");
-                            assert_eq!(x.keys.len(), y.keys.len(), "{label}");
-                            for (p, q) in x.keys.iter().zip(&y.keys) {
-                                assert!(same_bits(p, q), "{label}: a key differs");
-                            }
-                        }
-                    }
+                    checked += 1;
+                    assert_same_plan(&again, kept, &label);
                 }
             }
-        }
+        });
         // Some followers consulted their limit above their reach.
         assert!(checked > 0 && above > 0, "checked {checked}, above {above}");
     }

@@ -16,19 +16,27 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-/// Seconds per frame of `plan.morph` at `times` (median of 5 runs), on
-/// the cores of the calling pool; the morph must keep `path`.
-fn checked_frames(plan: &Compatible, times: &[f64], path: ThirdVertexPath) -> f64 {
+/// Seconds per frame of `frames` making `count` frames: the median of 5
+/// runs.
+fn per_frame(count: usize, mut frames: impl FnMut()) -> f64 {
     let runs: Vec<f64> = (0..5)
         .map(|_| {
             let start = Instant::now();
-            let morph = plan.morph(times, path).expect("a checked morph");
-            assert!(!morph.fallback, "{path}: {:?}", morph.fallbacks);
-            std::hint::black_box(&morph);
-            start.elapsed().as_secs_f64() / times.len() as f64
+            frames();
+            start.elapsed().as_secs_f64() / count as f64
         })
         .collect();
     median(runs)
+}
+
+/// Seconds per frame of `plan.morph` at `times` (median of 5 runs), on
+/// the cores of the calling pool; the morph must keep `path`.
+fn checked_frames(plan: &Compatible, times: &[f64], path: ThirdVertexPath) -> f64 {
+    per_frame(times.len(), || {
+        let morph = plan.morph(times, path).expect("a checked morph");
+        assert!(!morph.fallback, "{path}: {:?}", morph.fallbacks);
+        std::hint::black_box(&morph);
+    })
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -49,18 +57,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             // triangulation's combinatorics once, every frame's triangles
             // and fans), here on one core.
             let positions = || {
-                let runs: Vec<f64> = (0..5)
-                    .map(|_| {
-                        let start = Instant::now();
-                        let mut sink = 0.0;
-                        for &t in &times {
-                            sink += plan.positions(t, path)[n / 2].x;
-                        }
-                        std::hint::black_box(sink);
-                        start.elapsed().as_secs_f64() / times.len() as f64
-                    })
-                    .collect();
-                median(runs)
+                per_frame(times.len(), || {
+                    let mut sink = 0.0;
+                    for &t in &times {
+                        sink += plan.positions(t, path)[n / 2].x;
+                    }
+                    std::hint::black_box(sink);
+                })
             };
             let (s, c) = (
                 positions(),

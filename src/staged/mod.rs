@@ -1593,11 +1593,10 @@ fn last_leg(
         }
     }
     if excuse.holds() {
-        peak.consulted = peak.consulted.max(first_peak.consulted);
-        peak.went_on_last = peak.went_on_last.max(excuse.second_most);
-    } else {
-        peak.count(&first_peak);
+        // The first path's travels give way to the second's.
+        first_peak.went_on_last = excuse.second_most;
     }
+    peak.count(&first_peak);
     if let (Some(w), Some((leg, _))) = (&first_failed, &best) {
         st.fallbacks.push(Fallback::new(
             &format!("used the {} path for the last leg", leg.plan_path()),

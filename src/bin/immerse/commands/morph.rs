@@ -246,6 +246,7 @@ pub(crate) struct WithKeys<'a, T: serde::Serialize> {
     #[serde(flatten)]
     morph: &'a T,
     key_count: usize,
+    #[serde(serialize_with = "super::on_every_core")]
     keyframes: &'a [Keyframe],
 }
 

@@ -449,6 +449,7 @@ struct SequenceJson<'a> {
     keys: Vec<KeyJson<'a>>,
     speeds: &'a [KeySpeed],
     key_count: usize,
+    #[serde(serialize_with = "super::on_every_core")]
     keyframes: &'a [Keyframe],
 }
 

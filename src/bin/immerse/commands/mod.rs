@@ -148,8 +148,7 @@ where
     use rayon::prelude::*;
     use serde::ser::{Error, SerializeSeq};
     let mut seq = s.serialize_seq(Some(items.len()))?;
-    let at_once = 4 * rayon::current_num_threads().max(1);
-    for chunk in items.chunks(at_once) {
+    for chunk in items.chunks(encoded_at_once()) {
         let encoded: Vec<Result<Box<serde_json::value::RawValue>, serde_json::Error>> = chunk
             .par_iter()
             .map(serde_json::value::to_raw_value)
@@ -159,6 +158,12 @@ where
         }
     }
     seq.end()
+}
+
+/// How many elements [`on_every_core`] holds as text at once: four per
+/// core.
+fn encoded_at_once() -> usize {
+    4 * rayon::current_num_threads().max(1)
 }
 
 /// Writes `value` as JSON (pretty when `pretty`) and a newline to `path`
@@ -449,7 +454,7 @@ mod tests {
             triangles: vec![[0, 1, 2]],
         };
         keys.push(odd);
-        let chunk = 4 * rayon::current_num_threads().max(1);
+        let chunk = super::encoded_at_once();
         let many: Vec<Keyframe> = keys.iter().cycle().take(3 * chunk + 1).cloned().collect();
         for count in [0, 1, keys.len(), chunk, chunk + 1, many.len()] {
             let keyframes = &many[..count];

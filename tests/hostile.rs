@@ -677,4 +677,12 @@ fn hostile_local_traffic() {
             RSS_BOUND >> 20
         );
     }
+    // No connection is closed to make room before its request could be
+    // read (the server's grace): every announced 2 GiB body gets its 413.
+    let huge = &outcomes[1];
+    assert_eq!(
+        (huge.attack.as_str(), huge.answers.as_str()),
+        ("600 bodies announced at 2 GiB", "413×600"),
+        "a connection was closed before its request was read"
+    );
 }
